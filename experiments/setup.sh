@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Idempotent set-up: installs exactly the Debian packages this project needs.
+# Does nothing (no apt-get at all) when every package is already installed.
+# Usage: tools/setup.sh [--with-report] [--with-blender]
+#   default          : build + test dependencies (Bazel, Abseil, GoogleTest, ...)
+#   --with-report    : also LaTeX for the report PDF
+#   --with-blender   : also Blender (generates the report's scene 18, Suzanne)
+set -euo pipefail
+
+PKGS=(
+  bazel-bootstrap        # Bazel 4.2.3: the build system, works offline
+  g++                    # C++17 compiler
+  libabsl-dev            # Abseil: Status/StatusOr, flags, str_format
+  libgtest-dev libgmock-dev  # GoogleTest: unit tests
+  libbenchmark-dev       # Google Benchmark: micro-benchmarks
+  libassimp-dev          # assimp: mesh import (OBJ, PLY, OFF, AC3D, glTF, ...)
+  libpng-dev             # libpng: PNG output
+  libtbb-dev             # oneTBB: parallel rendering / building
+  libembree-dev          # Embree 3: the speed to beat
+  python3 python3-pandas python3-matplotlib python3-tqdm  # analysis
+  pkg-config ca-certificates xz-utils
+)
+for a in "$@"; do
+  case "$a" in
+    --with-report) PKGS+=(texlive-latex-recommended texlive-fonts-recommended texlive-latex-extra latexmk lmodern poppler-utils) ;;
+    --with-blender) PKGS+=(blender) ;;
+    *) echo "setup.sh: unknown option '$a'" >&2; exit 2 ;;
+  esac
+done
+
+missing=()
+for p in "${PKGS[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PKGS[@]} packages present"
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${#missing[@]} packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+echo "setup: done"

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# README command 2: set-up (idempotent) and every test, C++ and Python.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash experiments/setup.sh --with-blender
+# Scenes the tests use when present (small ones; skipped with a message offline).
+/usr/bin/python3 data/fetch.py --profile test || echo "test scenes unavailable; tests fall back to generated meshes"
+bazel test //... "$@"
