@@ -1,0 +1,89 @@
+"""Readers for the pipeline's inputs: the scene manifest, the raw result
+files written by experiments/*.py, and the report's own (seed) numbers.
+
+Readers are tolerant about shape (the manifest may be a list or a dict with
+"scenes") and strict about content (a malformed line is an error, not a
+silently dropped record).
+"""
+
+import json
+import os
+
+import pandas as pd
+
+SEED_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "seed")
+
+
+def load_manifest(path):
+    """Returns the manifest's scenes as a list of dicts, in manifest order,
+    each with an added "number": the 1-based position in the manifest (or the
+    scene's own "number" if the manifest gives one). The number is stable
+    whatever subset a profile or a fetch obtains, so tables can cite it."""
+    with open(path, encoding="utf-8") as f:
+        data = json.load(f)
+    if isinstance(data, dict):
+        if "scenes" not in data:
+            raise ValueError("%s: a dict manifest needs a 'scenes' key" % path)
+        data = data["scenes"]
+    if not isinstance(data, list):
+        raise ValueError("%s: manifest scenes must be a list" % path)
+    scenes, seen = [], set()
+    for i, scene in enumerate(data):
+        if not isinstance(scene, dict) or not scene.get("name"):
+            raise ValueError("%s: scene %d has no name" % (path, i))
+        if scene["name"] in seen:
+            raise ValueError("%s: duplicate scene %r" % (path, scene["name"]))
+        seen.add(scene["name"])
+        scene = dict(scene)
+        scene.setdefault("number", i + 1)
+        scenes.append(scene)
+    return scenes
+
+
+def load_jsonl(path):
+    """All records of a JSON-lines file (blank lines ignored). A missing file
+    is an empty list; a malformed line raises with its line number."""
+    records = []
+    if not os.path.exists(path):
+        return records
+    with open(path, encoding="utf-8") as f:
+        for lineno, line in enumerate(f, 1):
+            line = line.strip()
+            if not line:
+                continue
+            try:
+                records.append(json.loads(line))
+            except json.JSONDecodeError as e:
+                raise ValueError("%s:%d: %s" % (path, lineno, e)) from e
+    return records
+
+
+def latest_scene_records(records):
+    """One record per scene: the last successful one if any, else the last
+    failure. (Raw files are append-only, so a re-run appends; the newest
+    successful measurement wins.)"""
+    best = {}
+    for rec in records:
+        name = rec.get("scene")
+        if not name:
+            continue
+        prev = best.get(name)
+        if prev is None or rec.get("ok") or not prev.get("ok"):
+            best[name] = rec
+    return best
+
+
+def load_machine(results_dir):
+    """machine.json as a dict ({} when absent)."""
+    path = os.path.join(results_dir, "machine.json")
+    if not os.path.exists(path):
+        return {}
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def load_seed_table1(path=None):
+    """The report's Table 1 (18 rows) as a DataFrame indexed by report_scene."""
+    path = path or os.path.join(SEED_DIR, "table1.csv")
+    df = pd.read_csv(path, dtype={"name": str})
+    return df.set_index("report_scene", drop=False)

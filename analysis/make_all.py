@@ -1,0 +1,98 @@
+"""Turns raw results into everything report/main.tex inputs.
+
+    /usr/bin/python3 -m analysis.make_all --results out/results \
+        --manifest data/manifest.json --out report/generated
+
+Each module in GENERATORS has `generate(ctx) -> {Macro: (value, raw)}` and
+writes its own files (see analysis/context.py). The output directory is
+rebuilt from scratch on every run (in a temporary directory, swapped in only
+when every generator succeeded), so the report never picks up a stale table
+from an earlier run, and a failing generator leaves no half-made directory.
+
+To add Table N or a figure: write analysis/<name>.py with generate(ctx),
+append it to GENERATORS, \\input its file in report/main.tex.
+"""
+
+import argparse
+import os
+import shutil
+import sys
+
+# Run as a script (python3 analysis/make_all.py) as well as with -m.
+if __package__ in (None, ""):
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(
+        __file__))))
+
+from analysis import context  # noqa: E402
+from analysis import figures  # noqa: E402
+from analysis import latex  # noqa: E402
+from analysis import machine  # noqa: E402
+from analysis import seed_tables  # noqa: E402
+from analysis import table1  # noqa: E402
+
+# Order matters only for readability of macros.tex.
+GENERATORS = [
+    machine,
+    table1,
+    seed_tables,
+    figures,
+    # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
+]
+
+MARKER = ".generated-by-analysis"
+
+
+def make_all(results_dir, manifest_path, out_dir, generators=None):
+    """Runs every generator into a fresh out_dir; returns the files written."""
+    generators = GENERATORS if generators is None else generators
+    out_dir = os.path.abspath(out_dir)
+    if os.path.isdir(out_dir) and os.listdir(out_dir) and not os.path.exists(
+            os.path.join(out_dir, MARKER)):
+        raise RuntimeError("%s exists and was not made by make_all; refusing "
+                           "to replace it" % out_dir)
+    staging = out_dir + ".new"
+    if os.path.exists(staging):
+        shutil.rmtree(staging)
+    os.makedirs(staging)
+    try:
+        ctx = context.Context(results_dir, manifest_path, staging)
+        macros = {}
+        for gen in generators:
+            for name, value in gen.generate(ctx).items():
+                if name in macros:
+                    raise RuntimeError("macro \\%s defined twice (%s)"
+                                       % (name, gen.__name__))
+                macros[name] = value
+        ctx.write("macros.tex", latex.macros_file(
+            macros, header="Results: %s\nManifest: %s"
+            % (os.path.abspath(results_dir), os.path.abspath(manifest_path))))
+        latex.write_text(os.path.join(staging, MARKER),
+                         "".join(f + "\n" for f in ctx.written))
+    except BaseException:
+        shutil.rmtree(staging, ignore_errors=True)
+        raise
+    if os.path.exists(out_dir):
+        shutil.rmtree(out_dir)
+    os.rename(staging, out_dir)
+    return list(ctx.written)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--results", default="out/results",
+                        help="directory of raw results (scenes.jsonl, ...)")
+    parser.add_argument("--manifest", default="data/manifest.json")
+    parser.add_argument("--out", default="report/generated")
+    args = parser.parse_args(argv)
+    try:
+        written = make_all(args.results, args.manifest, args.out)
+    except (RuntimeError, ValueError, OSError) as e:
+        print("make_all: error: %s" % e, file=sys.stderr)
+        return 1
+    for f in written:
+        print(os.path.join(args.out, f))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

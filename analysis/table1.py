@@ -1,0 +1,167 @@
+"""Table 1: the scene library as obtained and loaded on this machine.
+
+Input : the manifest (what each scene is, where it comes from, how many
+        triangles it should have) and results/scenes.jsonl (what scene_info
+        actually loaded; written by experiments/scenes.py).
+Output: table1.tex, plus the macros the text quotes about the scenes.
+"""
+
+from analysis import latex
+
+SCENES_FILE = "scenes.jsonl"
+
+_KIND_LABELS = {
+    "package": "Debian",
+    "npm": "npm",
+    "generator": "generator",
+    "blender": "Blender",
+    "url": "download",
+}
+
+
+def source_label(scene):
+    """'Debian \\texttt{pkg}', 'npm \\texttt{pkg}', 'generator \\texttt{x}'."""
+    kind = scene.get("kind") or ""
+    label = latex.escape(_KIND_LABELS.get(kind, kind)) or latex.DASH
+    detail = scene.get("package") or scene.get("generator")
+    if detail and kind != "url":
+        label += " \\texttt{%s}" % latex.escape(detail)
+    return label
+
+
+def stands_in_for(scene, seed):
+    """'2 Armadillo' for a scene standing in for a report scene, else a dash.
+    The name comes from the manifest, or from the report's own table."""
+    number = scene.get("report_scene")
+    if number in (None, ""):
+        return latex.DASH
+    number = int(number)
+    name = scene.get("report_name")
+    if not name and seed is not None and number in seed.index:
+        name = seed.loc[number, "name"]
+    return ("%d %s" % (number, latex.escape(name))) if name else str(number)
+
+
+def build_rows(manifest, records):
+    """Joins manifest scenes with their latest scene_info record.
+
+    Returns a list of dicts, one per scene that has a record (obtained and
+    tried), ordered by manifest number; scenes with a record but no manifest
+    entry come last (number None)."""
+    from analysis.inputs import latest_scene_records
+
+    latest = latest_scene_records(records)
+    by_name = {s["name"]: s for s in manifest}
+    rows = []
+    for name, rec in latest.items():
+        scene = by_name.get(name, {"name": name, "number": None})
+        expected = scene.get("expected_triangles")
+        n_tri = rec.get("n_tri") if rec.get("ok") else None
+        rows.append({
+            "number": scene.get("number"),
+            "name": name,
+            "scene": scene,
+            "record": rec,
+            "ok": bool(rec.get("ok")),
+            "n_tri": n_tri,
+            "expected": expected,
+            "diff": (n_tri - expected) if (n_tri is not None
+                                           and expected is not None) else None,
+        })
+    rows.sort(key=lambda r: (r["number"] is None, r["number"] or 0, r["name"]))
+    return rows
+
+
+def render(rows, seed):
+    header = ["\\#", "Scene", "Stands in for", "Triangles",
+              "Expected", "Check", "Source", "Licence"]
+    body, notes, failures = [], [], 0
+    for row in rows:
+        scene = row["scene"]
+        if row["ok"]:
+            loaded = latex.fmt_int(row["n_tri"])
+        else:
+            failures += 1
+            loaded = "failed$^{%d}$" % failures
+            err = (row["record"].get("error") or "unknown error").strip()
+            err = err.splitlines()[-1] if err else "unknown error"
+            if len(err) > 160:
+                err = err[:157] + "..."
+            notes.append("$^{%d}$ %s failed to load: %s"
+                         % (failures, latex.escape(row["name"]),
+                            latex.escape(err)))
+        if row["diff"] is None:
+            check = latex.DASH
+        elif row["diff"] == 0:
+            check = latex.CHECK
+        else:
+            check = latex.fmt_signed_int(row["diff"])
+        body.append([
+            str(row["number"]) if row["number"] is not None else latex.DASH,
+            latex.escape(row["name"]),
+            stands_in_for(scene, seed),
+            loaded,
+            latex.fmt_int(row["expected"]),
+            check,
+            source_label(scene),
+            latex.escape(scene.get("licence")) or latex.DASH,
+        ])
+    if not body:
+        return _render_empty()
+    caption = (
+        "The scene library as loaded on this machine. \\# is our scene "
+        "number (position in \\texttt{data/manifest.json}, stable across "
+        "profiles), used by all later tables. \\emph{Stands in for} names "
+        "the report's scene (Table~\\ref{tab:seed1}) a scene replaces. "
+        "\\emph{Triangles} is the count as loaded by \\texttt{scene\\_info} "
+        "(after dropping degenerate and non-finite triangles); "
+        "\\emph{Expected} comes from the manifest; \\emph{Check} is "
+        "\\checkmark{} when they agree, else the difference.")
+    return latex.booktabs(header, body, align=("rllrrrl"
+                                 ">{\\raggedright\\arraybackslash}p{2.8cm}"),
+                          caption=caption, label="tab:scenes",
+                          notes=notes or None, size="footnotesize")
+
+
+def _render_empty():
+    return ("\\begin{table}[htbp]\n\\centering\n"
+            "\\fbox{No scene was obtained: Table~1 is empty.}\n"
+            "\\caption{The scene library as loaded on this machine.}\n"
+            "\\label{tab:scenes}\n\\end{table}\n")
+
+
+def macros(rows, seed):
+    ok = [r for r in rows if r["ok"]]
+    largest = max(ok, key=lambda r: r["n_tri"]) if ok else None
+    covered = {int(r["scene"]["report_scene"]) for r in ok
+               if r["scene"].get("report_scene") not in (None, "")}
+    profiles = sorted({r["record"].get("profile") for r in rows
+                       if r["record"].get("profile")})
+    with_expected = [r for r in ok if r["expected"] is not None]
+    return {
+        "NumScenes": (len(ok), False),
+        "NumScenesTried": (len(rows), False),
+        "NumScenesFailed": (len(rows) - len(ok), False),
+        "NumScenesWithExpected": (len(with_expected), False),
+        "NumScenesMatchExpected": (
+            sum(1 for r in with_expected if r["diff"] == 0), False),
+        "TotalTriangles": (latex.fmt_int(sum(r["n_tri"] for r in ok)), False),
+        "LargestScene": (largest["name"] if largest else "none", False),
+        "LargestSceneTriangles": (
+            latex.fmt_int(largest["n_tri"]) if largest else latex.DASH, True),
+        "NumReportScenesCovered": (len(covered), False),
+        "NumReportScenes": (len(seed) if seed is not None else 18, False),
+        "Profile": (", ".join(profiles) or "unknown", False),
+    }
+
+
+def generate(ctx):
+    records = ctx.results(SCENES_FILE)
+    if not records:
+        raise RuntimeError(
+            "no scene results in %s/%s: run experiments/scenes.py first"
+            % (ctx.results_dir, SCENES_FILE))
+    seed = ctx.seed_table1
+    rows = build_rows(ctx.manifest, records)
+    ctx.write("table1.tex", render(rows, seed))
+    return macros(rows, seed)

@@ -1,0 +1,52 @@
+// Binned SAH split with min-max binning.
+//
+// Report, section "Binning SAH strategy"; min-max binning as in Hapala &
+// Havran, "Review: Kd-tree traversal algorithms for ray tracing", CGF 30(1),
+// 2011 (the report's [1]); SAH after Havran & Bittner 2002 (the report's [2]).
+// Two arrays of `bins` counters receive, in one pass over the references, the
+// bin of each box's start (min) and end (max). One sweep over the bins - 1
+// interior planes then evaluates the report's relaxed cost
+//     C = SA_L * N_L + SA_R * N_R
+// with N_L += starts[i], N_R -= ends[i]. The first strict minimum wins; with
+// all three axes, they are tried in x, y, z order. There is no cost-based
+// termination (as in the report): a node splits until maxDepth/maxLeafSize.
+#ifndef KDTREE_CC_KDTREE_BINNED_SAH_H_
+#define KDTREE_CC_KDTREE_BINNED_SAH_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "cc/geometry/aabb.h"
+#include "cc/kdtree/build_ref.h"
+#include "cc/kdtree/config.h"
+
+namespace kdtree {
+
+// Reused counter arrays, so that the build allocates nothing per node.
+struct BinScratch {
+  std::vector<uint32_t> starts, ends;
+};
+
+// Bin of coordinate x: (int)((x - lo) * bins / extent), clamped to
+// [0, bins - 1]. Float arithmetic in this order (seed-compatible).
+inline int BinOf(float x, float lo, float extent, int bins) {
+  const float f = (x - lo) * static_cast<float>(bins) / extent;
+  int b = f >= 0.0f ? static_cast<int>(f) : 0;
+  return b < bins ? b : bins - 1;
+}
+
+// Position of candidate plane i (1 <= i < bins) of an axis [lo, lo + extent].
+inline float BinPlane(float lo, float extent, int i, int bins) {
+  return lo + extent * static_cast<float>(i) / static_cast<float>(bins);
+}
+
+// Best plane over config.bins bins on the driving axis (config.use_driving_axis)
+// or on all three axes. Axes of zero extent are skipped; not found when every
+// candidate axis is flat.
+Split FindBinnedSahSplit(const BuildRef* refs, size_t n, const AABB& node_box,
+                         const Config& config, BinScratch* scratch);
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_BINNED_SAH_H_

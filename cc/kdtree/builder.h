@@ -1,0 +1,31 @@
+// Top-down recursive kd-tree construction (the report's sections "Spatial
+// median kd-tree" to "Pruning"): one driver, with the split strategy (median
+// or binned SAH), clipping and pruning switched by Config.
+#ifndef KDTREE_CC_KDTREE_BUILDER_H_
+#define KDTREE_CC_KDTREE_BUILDER_H_
+
+#include "absl/status/statusor.h"
+#include "cc/geometry/triangle.h"
+#include "cc/kdtree/config.h"
+#include "cc/kdtree/tree.h"
+
+namespace kdtree {
+
+// Builds the tree over `soup`. Rules (see config.h for the options):
+//  - root box = union of the triangles' tight boxes; root depth 0;
+//  - leaf when the node holds <= maxLeafSize references or depth >= maxDepth,
+//    or when the strategy finds no plane (a node box of zero extent);
+//  - partition: a reference goes left when box.lo < P, right when box.hi > P
+//    (strict: a box that only touches the plane goes to one side). A box lying
+//    in the plane (lo == hi == P) goes to both children by default; the
+//    seed-compatible mode sends it nowhere and counts it in lost_planar, as the
+//    report's numbers show its implementation did;
+//  - node and reference arrays are reserved up front (3x the triangle count,
+//    as in the report); build references live in one pool reused by every
+//    level, so the build does no per-node heap allocation.
+// Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs.
+absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config);
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_BUILDER_H_

@@ -1,0 +1,186 @@
+#include "cc/kdtree/env_file.h"
+
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+#include "absl/strings/ascii.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+
+namespace kdtree {
+namespace {
+
+struct Token {
+  std::string text;
+  int line;
+};
+
+std::vector<Token> Tokenize(const std::string& text) {
+  std::vector<Token> out;
+  int line = 1;
+  size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      ++i;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (c == '#' || (c == '/' && i + 1 < text.size() && text[i + 1] == '/')) {
+      while (i < text.size() && text[i] != '\n') ++i;
+    } else if (c == '{' || c == '}') {
+      out.push_back({std::string(1, c), line});
+      ++i;
+    } else {
+      size_t j = i;
+      while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j])) &&
+             text[j] != '{' && text[j] != '}' && text[j] != '#') {
+        ++j;
+      }
+      out.push_back({text.substr(i, j - i), line});
+      i = j;
+    }
+  }
+  return out;
+}
+
+class Parser {
+ public:
+  Parser(std::vector<Token> tokens, std::string filename, const Config& base)
+      : tokens_(std::move(tokens)), filename_(std::move(filename)) {
+    result_.config = base;
+  }
+
+  absl::StatusOr<EnvResult> Parse() {
+    while (pos_ < tokens_.size()) {
+      const Token name = tokens_[pos_++];
+      if (name.text == "{" || name.text == "}") return Error(name.line, "unexpected '" + name.text + "'");
+      if (!Expect("{", name)) return status_;
+      if (name.text == "RTCore" || name.text == "KDTree") {
+        if (absl::Status s = Block(name.text, name.line); !s.ok()) return s;
+      } else {
+        if (absl::Status s = Skip(name); !s.ok()) return s;
+        result_.skipped_blocks.push_back(name.text);
+      }
+    }
+    if (absl::Status s = result_.config.Validate(); !s.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat(filename_, ": ", s.message()));
+    }
+    return result_;
+  }
+
+ private:
+  absl::Status Error(int line, const std::string& reason) {
+    status_ = absl::InvalidArgumentError(absl::StrCat(filename_, ":", line, ": ", reason));
+    return status_;
+  }
+
+  bool Expect(const std::string& what, const Token& after) {
+    if (pos_ >= tokens_.size()) {
+      Error(after.line, "expected '" + what + "' after '" + after.text + "', got end of file");
+      return false;
+    }
+    if (tokens_[pos_].text != what) {
+      Error(tokens_[pos_].line, "expected '" + what + "' after '" + after.text + "', got '" +
+                                    tokens_[pos_].text + "'");
+      return false;
+    }
+    ++pos_;
+    return true;
+  }
+
+  // Skips a block of another nanoGOLEM module, nested braces included.
+  absl::Status Skip(const Token& name) {
+    int depth = 1;
+    while (pos_ < tokens_.size() && depth > 0) {
+      const std::string& t = tokens_[pos_++].text;
+      if (t == "{") ++depth;
+      if (t == "}") --depth;
+    }
+    if (depth > 0) return Error(name.line, "block '" + name.text + "' is not closed");
+    return absl::OkStatus();
+  }
+
+  absl::Status Block(const std::string& block, int open_line) {
+    Config& c = result_.config;
+    for (;;) {
+      if (pos_ >= tokens_.size()) return Error(open_line, "block '" + block + "' is not closed");
+      const Token key = tokens_[pos_++];
+      if (key.text == "}") return absl::OkStatus();
+      if (key.text == "{") return Error(key.line, "unexpected '{' in block '" + block + "'");
+      if (block == "KDTree" && key.text == "Binning") {
+        if (!Expect("{", key)) return status_;
+        if (absl::Status s = Block("Binning", key.line); !s.ok()) return s;
+        continue;
+      }
+      if (pos_ >= tokens_.size() || tokens_[pos_].text == "}" || tokens_[pos_].text == "{") {
+        return Error(key.line, "option '" + key.text + "' has no value");
+      }
+      const Token value = tokens_[pos_++];
+      absl::Status s;
+      if (block == "RTCore" && key.text == "castShadowRays") {
+        s = Bool(value, &c.cast_shadow_rays);
+      } else if (block == "KDTree" && key.text == "maxDepth") {
+        s = Int(value, &c.max_depth);
+      } else if (block == "KDTree" && key.text == "maxLeafSize") {
+        s = Int(value, &c.max_leaf_size);
+      } else if (block == "KDTree" && key.text == "useClipping") {
+        s = Bool(value, &c.use_clipping);
+      } else if (block == "KDTree" && key.text == "usePruning") {
+        s = Bool(value, &c.use_pruning);
+      } else if (block == "KDTree" && key.text == "seedCompatible") {
+        s = Bool(value, &c.seed_compatible);
+      } else if (block == "Binning" && (key.text == "useBinning" || key.text == "useBining")) {
+        s = Bool(value, &c.use_binning);  // "useBining" is the report's spelling in its prose
+      } else if (block == "Binning" && key.text == "useDrivingAxis") {
+        s = Bool(value, &c.use_driving_axis);
+      } else if (block == "Binning" && key.text == "bins") {
+        s = Int(value, &c.bins);
+      } else {
+        return Error(key.line, "unknown option '" + key.text + "' in block '" + block + "'");
+      }
+      if (!s.ok()) return s;
+    }
+  }
+
+  absl::Status Bool(const Token& v, bool* out) {
+    const std::string t = absl::AsciiStrToLower(v.text);
+    if (t == "on" || t == "true" || t == "1" || t == "yes") {
+      *out = true;
+    } else if (t == "off" || t == "false" || t == "0" || t == "no") {
+      *out = false;
+    } else {
+      return Error(v.line, "expected ON or OFF, got '" + v.text + "'");
+    }
+    return absl::OkStatus();
+  }
+
+  absl::Status Int(const Token& v, int* out) {
+    if (!absl::SimpleAtoi(v.text, out)) return Error(v.line, "expected an integer, got '" + v.text + "'");
+    return absl::OkStatus();
+  }
+
+  std::vector<Token> tokens_;
+  std::string filename_;
+  size_t pos_ = 0;
+  EnvResult result_;
+  absl::Status status_;
+};
+
+}  // namespace
+
+absl::StatusOr<EnvResult> ParseEnvironment(const std::string& text, const std::string& filename,
+                                           const Config& base) {
+  return Parser(Tokenize(text), filename, base).Parse();
+}
+
+absl::StatusOr<EnvResult> LoadEnvironmentFile(const std::string& path, const Config& base) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open environment file"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ParseEnvironment(ss.str(), path, base);
+}
+
+}  // namespace kdtree

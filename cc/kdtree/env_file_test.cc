@@ -1,0 +1,97 @@
+#include "cc/kdtree/env_file.h"
+
+#include <string>
+
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+TEST(EnvFile, ParsesTheReportsSnippet) {
+  const std::string text = R"(RTCore {
+    castShadowRays ON
+}
+
+KDTree {
+    maxDepth 24
+    maxLeafSize 4
+    Binning {
+        useBinning ON
+        useDrivingAxis ON
+        bins 16
+    }
+    useClipping ON
+    usePruning ON
+}
+)";
+  Config base;
+  base.max_depth = 3;
+  base.bins = 5;
+  base.use_clipping = false;
+  absl::StatusOr<EnvResult> r = ParseEnvironment(text, "report.env", base);
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->config, Config());
+}
+
+TEST(EnvFile, RoundTripsEveryPreset) {
+  for (const std::string& name : PresetNames()) {
+    const Config c = *Preset(name);
+    absl::StatusOr<EnvResult> r = ParseEnvironment(c.ToEnvironment(), name + ".env");
+    ASSERT_TRUE(r.ok()) << r.status();
+    EXPECT_EQ(r->config, c) << name;
+  }
+}
+
+TEST(EnvFile, OneLineFormCommentsAndOtherBlocks) {
+  absl::StatusOr<EnvResult> r = ParseEnvironment(
+      "# nanoGOLEM\nCamera { width 800 Sub { a b } }\n"
+      "KDTree { maxDepth 16 maxLeafSize 2 Binning { useBinning OFF } useClipping off "
+      "usePruning false } // end\n",
+      "x.env");
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->config.max_depth, 16);
+  EXPECT_EQ(r->config.max_leaf_size, 2);
+  EXPECT_FALSE(r->config.use_binning);
+  EXPECT_FALSE(r->config.use_clipping);
+  EXPECT_FALSE(r->config.use_pruning);
+  ASSERT_EQ(r->skipped_blocks.size(), 1u);
+  EXPECT_EQ(r->skipped_blocks[0], "Camera");
+}
+
+struct BadCase {
+  const char* text;
+  const char* where;   // expected "file:line"
+  const char* reason;  // expected part of the message
+};
+
+TEST(EnvFile, ErrorsNameFileLineAndReason) {
+  const BadCase cases[] = {
+      {"KDTree {\n maxDepth abc\n}", "bad.env:2", "expected an integer, got 'abc'"},
+      {"KDTree {\n useClipping MAYBE\n}", "bad.env:2", "expected ON or OFF"},
+      {"KDTree {\n\n maxDepht 3\n}", "bad.env:3", "unknown option 'maxDepht'"},
+      {"KDTree {\n maxDepth 3\n", "bad.env:1", "not closed"},
+      {"KDTree maxDepth 3", "bad.env:1", "expected '{'"},
+      {"}", "bad.env:1", "unexpected '}'"},
+      {"KDTree {\n maxDepth }", "bad.env:2", "has no value"},
+      {"KDTree { maxDepth 99 }", "bad.env", "maxDepth must be in [0, 60]"},
+      {"KDTree { Binning { bins 1 } }", "bad.env", "bins must be in"},
+      {"RTCore { castShadowRays }", "bad.env:1", "has no value"},
+      {"Other { {", "bad.env:1", "not closed"},
+  };
+  for (const BadCase& c : cases) {
+    absl::StatusOr<EnvResult> r = ParseEnvironment(c.text, "bad.env");
+    ASSERT_FALSE(r.ok()) << c.text;
+    const std::string msg(r.status().message());
+    EXPECT_NE(msg.find(c.where), std::string::npos) << msg;
+    EXPECT_NE(msg.find(c.reason), std::string::npos) << msg;
+  }
+}
+
+TEST(EnvFile, MissingFileIsNamed) {
+  absl::StatusOr<EnvResult> r = LoadEnvironmentFile("/nonexistent/k.env");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("/nonexistent/k.env"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace kdtree

@@ -1,0 +1,71 @@
+#include "cc/kdtree/stats.h"
+
+#include <vector>
+
+#include "absl/strings/str_format.h"
+#include "cc/kdtree/build_ref.h"
+
+namespace kdtree {
+namespace {
+
+struct Walker {
+  const KdTree& tree;
+  TreeStats* s;
+  double root_area;
+  uint64_t depth_sum = 0;
+
+  void Walk(uint32_t index, const AABB& box, int depth) {
+    const KdNode& node = tree.nodes[index];
+    const double rel = root_area > 0 ? box.SurfaceArea() / root_area : 0.0;
+    if (node.is_leaf()) {
+      const uint32_t count = tree.LeafCount(node);
+      ++s->leaves;
+      if (count == 0) ++s->empty_leaves;
+      s->leaf_refs += count;
+      depth_sum += depth;
+      if (depth > s->max_depth) s->max_depth = depth;
+      if (!box.Valid()) ++s->invalid_leaf_boxes;
+      s->sah_cost += kSahIntersectionCost * count * rel;
+      return;
+    }
+    ++s->inner;
+    s->sah_cost += kSahTraversalCost * rel;
+    Walk(index + 1, box.LeftOf(node.axis(), node.split), depth + 1);
+    Walk(node.index(), box.RightOf(node.axis(), node.split), depth + 1);
+  }
+};
+
+}  // namespace
+
+TreeStats ComputeStats(const KdTree& tree) {
+  TreeStats s;
+  if (tree.nodes.empty()) return s;
+  Walker w{tree, &s, tree.bounds.Valid() ? tree.bounds.SurfaceArea() : 0.0};
+  w.Walk(0, tree.bounds, 0);
+  s.avg_leaf_refs = s.leaves ? static_cast<double>(s.leaf_refs) / s.leaves : 0.0;
+  s.empty_ratio = s.leaves ? static_cast<double>(s.empty_leaves) / s.leaves : 0.0;
+  s.avg_depth = s.leaves ? static_cast<double>(w.depth_sum) / s.leaves : 0.0;
+  s.clipped = tree.counters.clipped;
+  s.pruned = tree.counters.pruned();
+  s.lost_planar = tree.counters.lost_planar;
+  s.mem_report_mb = (8.0 * (s.inner + s.leaves) + 4.0 * (s.leaf_refs + s.leaves - s.empty_leaves) +
+                     8.0 * tree.num_triangles()) /
+                    (1024.0 * 1024.0);
+  s.tree_bytes = tree.nodes.size() * sizeof(KdNode) + tree.refs.size() * sizeof(uint32_t) +
+                 tree.tris.size() * sizeof(TriAccel);
+  s.build_peak_bytes = tree.counters.peak_build_refs * sizeof(BuildRef);
+  return s;
+}
+
+std::string StatsToJson(const TreeStats& s) {
+  return absl::StrFormat(
+      "{\"N_I\": %d, \"N_L\": %d, \"N_empty\": %d, \"N_TP\": %d, \"N_AP\": %.6g, "
+      "\"R_E\": %.6g, \"D_max\": %d, \"D_avg\": %.6g, \"N_CL\": %d, \"N_PR\": %d, "
+      "\"N_lost_planar\": %d, \"mem_report_mb\": %.6g, \"tree_bytes\": %d, "
+      "\"build_peak_bytes\": %d, \"sah_cost\": %.9g, \"invalid_leaf_boxes\": %d}",
+      s.inner, s.leaves, s.empty_leaves, s.leaf_refs, s.avg_leaf_refs, s.empty_ratio, s.max_depth,
+      s.avg_depth, s.clipped, s.pruned, s.lost_planar, s.mem_report_mb, s.tree_bytes,
+      s.build_peak_bytes, s.sah_cost, s.invalid_leaf_boxes);
+}
+
+}  // namespace kdtree

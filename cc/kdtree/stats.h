@@ -1,0 +1,52 @@
+// Statistics of a built tree: the report's tables 5-10 (N_I, N_L, N_TP, N_AP,
+// mem, R_E, D_max, D_avg, N_CL, N_PR) and the tree's SAH cost.
+#ifndef KDTREE_CC_KDTREE_STATS_H_
+#define KDTREE_CC_KDTREE_STATS_H_
+
+#include <cstdint>
+#include <string>
+
+#include "cc/kdtree/tree.h"
+
+namespace kdtree {
+
+// SAH cost constants (Wald & Havran, "On building fast kd-trees for ray
+// tracing, and on doing that in O(N log N)", IEEE RT 2006): traversal step
+// K_T = 15, triangle test K_I = 20. The tree's cost is
+//   sum over inner nodes K_T SA(n) / SA(root) + sum over leaves K_I N(l) SA(l) / SA(root).
+inline constexpr double kSahTraversalCost = 15.0;
+inline constexpr double kSahIntersectionCost = 20.0;
+
+struct TreeStats {
+  uint64_t inner = 0;         // N_I
+  uint64_t leaves = 0;        // N_L
+  uint64_t empty_leaves = 0;
+  uint64_t leaf_refs = 0;     // N_TP: references summed over leaves
+  double avg_leaf_refs = 0;   // N_AP = N_TP / N_L
+  double empty_ratio = 0;     // R_E = empty leaves / N_L
+  int max_depth = 0;          // D_max over leaves (root depth 0)
+  double avg_depth = 0;       // D_avg over leaves
+  uint64_t clipped = 0;       // N_CL
+  uint64_t pruned = 0;        // N_PR
+  uint64_t lost_planar = 0;   // seed mode: in-plane references lost
+  // mem as the report computes it (MB of 2^20 bytes; fits every row 18 entry):
+  // [8 (N_I + N_L) + 4 (N_TP + N_L - N_empty) + 8 N_tri] / 2^20.
+  double mem_report_mb = 0;
+  // Bytes the traversal reads: nodes, leaf lists, per-triangle data.
+  uint64_t tree_bytes = 0;
+  // Peak bytes of build references (clipped boxes included) during the build.
+  uint64_t build_peak_bytes = 0;
+  double sah_cost = 0;
+  // Leaves that are not valid boxes (must be 0) and triangles absent from
+  // every leaf (neither pruned as non-overlapping nor lost: must be 0).
+  uint64_t invalid_leaf_boxes = 0;
+};
+
+TreeStats ComputeStats(const KdTree& tree);
+
+// One JSON object with every field of TreeStats plus the build counters.
+std::string StatsToJson(const TreeStats& s);
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_STATS_H_

@@ -1,0 +1,68 @@
+#include "cc/kdtree/stats.h"
+
+#include "cc/kdtree/builder.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+// Three unit triangles along x at [0,1], [3,4] and [7,8] (y, z in [0, 1]),
+// spatial median, maxLeafSize 1. Counted by hand:
+//   root box x [0, 8] splits at x = 4: left {T0, T1} (T1's box ends at 4, so
+//   it only touches the plane and goes left), right {T2} -> leaf at depth 1;
+//   left box x [0, 4] splits at x = 2: {T0} and {T1} -> leaves at depth 2.
+// N_I = 2, N_L = 3, N_TP = 3, no empty leaf, D_max = 2, D_avg = 5/3.
+// mem = (8 * 5 + 4 * (3 + 3 - 0) + 8 * 3) / 2^20 = 88 bytes.
+// SAH (K_T 15, K_I 20): areas root 34, [0,4] 18, [0,2] 10, [2,4] 10, [4,8] 18:
+//   15 (34 + 18) / 34 + 20 (10 + 10 + 18) / 34 = 1540 / 34.
+TEST(Stats, HandCountedTree) {
+  TriangleSoup soup;
+  soup.Add({0, 0, 0}, {1, 0, 1}, {0, 1, 1});
+  soup.Add({3, 0, 0}, {4, 0, 1}, {3, 1, 1});
+  soup.Add({7, 0, 0}, {8, 0, 1}, {7, 1, 1});
+  Config c = *Preset("median-16-2");
+  c.max_leaf_size = 1;
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, c);
+  ASSERT_TRUE(tree.ok());
+  const TreeStats s = ComputeStats(*tree);
+  EXPECT_EQ(s.inner, 2u);
+  EXPECT_EQ(s.leaves, 3u);
+  EXPECT_EQ(s.leaf_refs, 3u);
+  EXPECT_EQ(s.empty_leaves, 0u);
+  EXPECT_DOUBLE_EQ(s.avg_leaf_refs, 1.0);
+  EXPECT_DOUBLE_EQ(s.empty_ratio, 0.0);
+  EXPECT_EQ(s.max_depth, 2);
+  EXPECT_DOUBLE_EQ(s.avg_depth, 5.0 / 3.0);
+  EXPECT_DOUBLE_EQ(s.mem_report_mb, 88.0 / (1024 * 1024));
+  EXPECT_NEAR(s.sah_cost, 1540.0 / 34.0, 1e-9);
+  EXPECT_EQ(s.clipped, 0u);
+  EXPECT_EQ(s.pruned, 0u);
+  // 5 nodes * 8 + refs (shared 0 + 3 lists of 2) * 4 + 3 triangles * 36.
+  EXPECT_EQ(s.tree_bytes, 5u * 8 + 7u * 4 + 3u * 36);
+  EXPECT_EQ(tree->nodes[0].axis(), 0);
+  EXPECT_FLOAT_EQ(tree->nodes[0].split, 4.0f);
+  EXPECT_EQ(tree->nodes[0].index(), 4u);  // right child after the 3-node left subtree
+}
+
+TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
+  // Two triangles at both ends: median splits leave empty cells between them.
+  TriangleSoup soup;
+  soup.Add({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  soup.Add({15, 0, 0}, {16, 0, 0}, {15, 1, 0});
+  soup.Add({15, 0, 0.5f}, {16, 0, 0.5f}, {15, 1, 0.5f});
+  Config c = *Preset("median-16-2");
+  c.max_leaf_size = 1;
+  c.max_depth = 3;
+  // Root [0,16] -> x 8: {T0} leaf | {T1,T2} -> x 12: empty | {T1,T2} -> x 14: empty | {T1,T2} (depth 3).
+  const KdTree tree = *BuildKdTree(soup, c);
+  const TreeStats s = ComputeStats(tree);
+  EXPECT_EQ(s.leaves, 4u);
+  EXPECT_EQ(s.empty_leaves, 2u);
+  EXPECT_DOUBLE_EQ(s.empty_ratio, 0.5);
+  EXPECT_EQ(s.leaf_refs, 3u);
+  EXPECT_EQ(tree.refs.size(), 1u + 2u + 3u);  // shared zero, {T0}, {T1, T2}
+  EXPECT_EQ(s.max_depth, 3);
+}
+
+}  // namespace
+}  // namespace kdtree

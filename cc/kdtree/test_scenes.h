@@ -1,0 +1,39 @@
+// Deterministic scenes and rays for the kd-tree tests.
+#ifndef KDTREE_CC_KDTREE_TEST_SCENES_H_
+#define KDTREE_CC_KDTREE_TEST_SCENES_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "cc/geometry/ray.h"
+#include "cc/geometry/triangle.h"
+
+namespace kdtree {
+namespace testing {
+
+// A closed, bumpy sphere: an icosahedron subdivided `levels` times (20 * 4^levels
+// triangles) with seeded radial noise.
+TriangleSoup BumpySphere(int levels, uint32_t seed);
+
+// Unit cubes on an integer grid (voxel-world style): every exposed face as two
+// triangles lying exactly in integer planes, which are also split planes.
+TriangleSoup VoxelGrid(int nx, int ny, int nz, uint32_t seed);
+
+// Random soup of thin slivers (up to 0.17 long, 0.004 wide) in the unit cube.
+TriangleSoup ThinSoup(int count, uint32_t seed);
+
+// All triangles in the plane z = 0 (a flat scene: the root box has no depth).
+TriangleSoup FlatScene(int count, uint32_t seed);
+
+// Random rays: half aimed at random points of random triangles, half with
+// random origins and directions, from around the scene's box.
+std::vector<Ray> RandomRays(const TriangleSoup& soup, int count, uint32_t seed);
+
+// Every primary ray of a pinhole camera (width x height) on the +z side of the
+// scene box looking at its centre, 45 degree field of view.
+std::vector<Ray> CameraRays(const TriangleSoup& soup, int width, int height);
+
+}  // namespace testing
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_TEST_SCENES_H_

@@ -1,0 +1,171 @@
+// Every preset against the brute-force reference: closest hit (triangle, or t
+// within 1e-6 relative where two triangles tie) and any hit, on 100k seeded
+// random rays plus every ray of an 800x800 camera, per scene.
+#include "cc/kdtree/traversal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/stats.h"
+#include "cc/kdtree/test_scenes.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+struct Scene {
+  TriangleSoup soup;
+  std::vector<Ray> rays;
+  std::vector<Hit> reference;  // brute force closest hits
+};
+
+TriangleSoup MakeSoup(const std::string& name) {
+  if (name == "sphere") return testing::BumpySphere(4, 1);  // 5,120 triangles
+  if (name == "voxels") return testing::VoxelGrid(14, 8, 14, 2);
+  if (name == "thin") return testing::ThinSoup(3000, 3);
+  if (name == "flat") return testing::FlatScene(2000, 4);
+  if (name == "tiny") {  // hand-made: shared edge, a triangle in a split plane, a sliver
+    TriangleSoup s;
+    s.Add({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    s.Add({1, 0, 0}, {1, 1, 0}, {0, 1, 0});
+    s.Add({0.5f, 0, -1}, {0.5f, 1, -1}, {0.5f, 0, 1});
+    s.Add({0, 0, 0.5f}, {1, 1, 0.5f}, {1, 1.0001f, 0.5f});
+    s.Add({-1, -1, -1}, {2, -1, -1}, {-1, 2, 2});
+    return s;
+  }
+  return {};
+}
+
+const Scene& GetScene(const std::string& name) {
+  static auto* cache = new std::map<std::string, Scene>();
+  auto it = cache->find(name);
+  if (it != cache->end()) return it->second;
+  Scene& s = (*cache)[name];
+  s.soup = MakeSoup(name);
+  s.rays = testing::RandomRays(s.soup, 100000, 17);
+  const std::vector<Ray> cam = testing::CameraRays(s.soup, 800, 800);
+  s.rays.insert(s.rays.end(), cam.begin(), cam.end());
+  BruteForce bf(s.soup);
+  s.reference.reserve(s.rays.size());
+  for (size_t i = 0; i < s.rays.size() - cam.size(); ++i) s.reference.push_back(bf.Intersect(s.rays[i]));
+  // Camera rays: the rays of one image row lie in one plane through the eye,
+  // so only triangles that reach that plane (with a generous margin for the
+  // rounding of the ray directions) can be hit; the reference tests all of them.
+  const AABB box = s.soup.Bounds();
+  const double margin = 1e-4 * (Length(box.Extent()) + Length(cam[0].origin - box.lo));
+  std::vector<uint32_t> candidates;
+  for (int row = 0; row < 800; ++row) {
+    const Ray& first = cam[row * 800];
+    const Ray& last = cam[row * 800 + 799];
+    const double n[3] = {
+        double(first.dir.y) * last.dir.z - double(first.dir.z) * last.dir.y,
+        double(first.dir.z) * last.dir.x - double(first.dir.x) * last.dir.z,
+        double(first.dir.x) * last.dir.y - double(first.dir.y) * last.dir.x};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    candidates.clear();
+    for (size_t t = 0; t < s.soup.size(); ++t) {
+      double lo = 1e300, hi = -1e300;
+      for (const Vec3* v : {&s.soup.a(t), &s.soup.b(t), &s.soup.c(t)}) {
+        const double d = ((v->x - double(first.origin.x)) * n[0] + (v->y - double(first.origin.y)) * n[1] +
+                          (v->z - double(first.origin.z)) * n[2]) / len;
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+      if (lo <= margin && hi >= -margin) candidates.push_back(static_cast<uint32_t>(t));
+    }
+    for (int x = 0; x < 800; ++x) s.reference.push_back(bf.Intersect(cam[row * 800 + x], candidates));
+  }
+  return s;
+}
+
+class VsBruteForce : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(VsBruteForce, EveryRayAgrees) {
+  const auto& [scene_name, preset] = GetParam();
+  const Scene& scene = GetScene(scene_name);
+  ASSERT_FALSE(scene.soup.empty());
+  absl::StatusOr<Config> config = Preset(preset);
+  ASSERT_TRUE(config.ok()) << config.status();
+  absl::StatusOr<KdTree> tree = BuildKdTree(scene.soup, *config);
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  const TreeStats stats = ComputeStats(*tree);
+  EXPECT_EQ(stats.invalid_leaf_boxes, 0u);
+  EXPECT_EQ(stats.lost_planar, 0u);
+
+  int closest_mismatch = 0, any_mismatch = 0, hits = 0;
+  TraversalCounters counters;
+  for (size_t i = 0; i < scene.rays.size(); ++i) {
+    const Ray& ray = scene.rays[i];
+    const Hit& want = scene.reference[i];
+    const Hit got = Intersect(*tree, ray, &counters);
+    hits += want.hit();
+    bool same = got.hit() == want.hit();
+    if (same && want.hit() && got.tri != want.tri) {
+      same = std::fabs(got.t - want.t) <= 1e-6f * std::fmax(1.0f, std::fabs(want.t));
+    }
+    if (!same && ++closest_mismatch <= 5) {
+      ADD_FAILURE() << "ray " << i << ": kd-tree tri " << got.tri << " t " << got.t
+                    << ", brute force tri " << want.tri << " t " << want.t;
+    }
+    if (Occluded(*tree, ray) != want.hit() && ++any_mismatch <= 5) {
+      ADD_FAILURE() << "ray " << i << ": any-hit disagrees with brute-force closest hit";
+    }
+  }
+  EXPECT_EQ(closest_mismatch, 0);
+  EXPECT_EQ(any_mismatch, 0);
+  EXPECT_GT(hits, static_cast<int>(scene.rays.size() / 20)) << "the rays should hit the scene";
+  EXPECT_EQ(counters.rays, scene.rays.size());
+  std::printf("%s/%s: %zu rays, %d hits, N_IT %.2f, N_TR %.2f, %s\n", scene_name.c_str(),
+              preset.c_str(), scene.rays.size(), hits,
+              static_cast<double>(counters.triangle_tests) / counters.rays,
+              static_cast<double>(counters.inner_visits) / counters.rays,
+              StatsToJson(stats).c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllPresets, VsBruteForce,
+    ::testing::Combine(::testing::Values("sphere", "voxels", "thin", "flat", "tiny"),
+                       ::testing::ValuesIn(PresetNames())),
+    [](const ::testing::TestParamInfo<VsBruteForce::ParamType>& info) {
+      std::string name = absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param));
+      for (char& c : name) if (c == '-') c = '_';
+      return name;
+    });
+
+TEST(Traversal, EmptyTreeMissesEverything) {
+  absl::StatusOr<KdTree> tree = BuildKdTree(TriangleSoup(), Config());
+  ASSERT_TRUE(tree.ok());
+  EXPECT_FALSE(Intersect(*tree, Ray{{0, 0, 0}, {1, 0, 0}}).hit());
+  EXPECT_FALSE(Occluded(*tree, Ray{{0, 0, 0}, {1, 0, 0}}));
+}
+
+TEST(Traversal, NanRayIsAMiss) {
+  absl::StatusOr<KdTree> tree = BuildKdTree(testing::BumpySphere(1, 1), Config());
+  ASSERT_TRUE(tree.ok());
+  const float nan = std::nanf("");
+  EXPECT_FALSE(Intersect(*tree, Ray{{nan, 0, 0}, {1, 0, 0}}).hit());
+  EXPECT_FALSE(Intersect(*tree, Ray{{-5, 0, 0}, {nan, 0, 0}}).hit());
+  EXPECT_TRUE(Intersect(*tree, Ray{{-5, 0, 0}, {1, 0, 0}}).hit());
+}
+
+TEST(Traversal, ShadowRayStopsAtTmax) {
+  TriangleSoup s;
+  s.Add({-1, -1, 5}, {1, -1, 5}, {0, 1, 5});
+  absl::StatusOr<KdTree> tree = BuildKdTree(s, Config());
+  ASSERT_TRUE(tree.ok());
+  EXPECT_TRUE(Occluded(*tree, Ray{{0, 0, 0}, {0, 0, 1}, 0.0f, 6.0f}));
+  EXPECT_FALSE(Occluded(*tree, Ray{{0, 0, 0}, {0, 0, 1}, 0.0f, 4.0f}));
+  const Hit h = Intersect(*tree, Ray{{0, 0, 0}, {0, 0, 1}});
+  ASSERT_TRUE(h.hit());
+  EXPECT_FLOAT_EQ(h.t, 5.0f);
+}
+
+}  // namespace
+}  // namespace kdtree

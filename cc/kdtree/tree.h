@@ -1,0 +1,68 @@
+// The kd-tree as plain data: builders produce it, traversal reads it.
+//
+// Layout of the report (section "Spatial median kd-tree"): every node is 8
+// bytes. The two low bits of `bits` hold the split axis (0, 1, 2) or the leaf
+// flag (3). An inner node stores the split position in `split`; its left child
+// is the next node in the array and `bits >> 2` is the index of its right
+// child. A leaf's `bits >> 2` points into `refs` at a count followed by that
+// many triangle indices (a count-prefixed list). All empty leaves share the
+// single count 0 stored at refs[0].
+#ifndef KDTREE_CC_KDTREE_TREE_H_
+#define KDTREE_CC_KDTREE_TREE_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "cc/geometry/aabb.h"
+#include "cc/geometry/intersect.h"
+#include "cc/kdtree/config.h"
+
+namespace kdtree {
+
+struct KdNode {
+  static constexpr uint32_t kLeaf = 3;
+  static constexpr uint32_t kMaxIndex = (1u << 30) - 1;
+
+  float split;    // inner nodes: split position
+  uint32_t bits;  // (index << 2) | axis-or-leaf
+
+  bool is_leaf() const { return (bits & 3u) == kLeaf; }
+  int axis() const { return static_cast<int>(bits & 3u); }
+  // Inner node: index of the right child. Leaf: offset of its list in refs.
+  uint32_t index() const { return bits >> 2; }
+
+  static KdNode Inner(int axis, float split, uint32_t right) {
+    return KdNode{split, (right << 2) | static_cast<uint32_t>(axis)};
+  }
+  static KdNode Leaf(uint32_t refs_offset) { return KdNode{0.0f, (refs_offset << 2) | kLeaf}; }
+};
+static_assert(sizeof(KdNode) == 8, "the report's node is 8 bytes");
+
+// Counters gathered while building (the report's N_CL, N_PR) and the
+// references lost by the seed-compatible strict partition.
+struct BuildCounters {
+  uint64_t clipped = 0;        // N_CL: clip operations (one reference became two)
+  uint64_t pruned_box = 0;     // clipped boxes outside their child, dropped
+  uint64_t pruned_leaf = 0;    // triangles whose surface misses the leaf box
+  uint64_t lost_planar = 0;    // seed mode only: in-plane references sent nowhere
+  uint64_t peak_build_refs = 0;  // largest number of build references alive at once
+  uint64_t pruned() const { return pruned_box + pruned_leaf; }  // N_PR
+};
+
+struct KdTree {
+  Config config;
+  AABB bounds;                  // root box: union of the triangles' tight boxes
+  std::vector<KdNode> nodes;    // nodes[0] is the root
+  std::vector<uint32_t> refs;   // count-prefixed leaf lists; refs[0] == 0
+  std::vector<TriAccel> tris;   // per-triangle intersection data, by index
+  BuildCounters counters;
+  double build_seconds = 0;     // T_B: triangles in memory to traversable tree
+
+  size_t num_triangles() const { return tris.size(); }
+  const uint32_t* LeafBegin(const KdNode& leaf) const { return &refs[leaf.index() + 1]; }
+  uint32_t LeafCount(const KdNode& leaf) const { return refs[leaf.index()]; }
+};
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_TREE_H_

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# README command 1: the whole reproduction, from scenes to out/report.pdf.
+#
+#   PROFILE=quick bash experiments/reproduce.sh     # test|quick|standard|full
+#
+# Runs from anywhere; idempotent and resumable (set-up installs nothing twice,
+# fetched scenes are cached, scenes already measured are skipped).
+# Raw results: out/results/ (append-only). Report: out/report.pdf.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT="$(pwd)"
+PROFILE="${PROFILE:-quick}"
+PY=/usr/bin/python3
+OUT="$ROOT/out"
+RESULTS="$OUT/results"
+
+step() { printf '\n==> %s\n' "$*"; }
+
+step "set-up (Debian packages, idempotent)"
+bash experiments/setup.sh --with-report --with-blender
+
+step "fetch scenes (profile $PROFILE)"
+# Exit 1 means some scene could not be obtained: go on with the others.
+# Any other failure (crash, bad usage) stops here.
+fetch_rc=0
+"$PY" data/fetch.py --profile "$PROFILE" || fetch_rc=$?
+if [ "$fetch_rc" -eq 1 ]; then
+  echo "reproduce: some scenes of profile '$PROFILE' could not be obtained;" \
+       "continuing with those that were" >&2
+elif [ "$fetch_rc" -ne 0 ]; then
+  echo "reproduce: data/fetch.py failed (exit $fetch_rc)" >&2
+  exit "$fetch_rc"
+fi
+
+step "build tools"
+bazel build -c opt //cc/tools:scene_info
+# The bazel-bin symlink follows whichever configuration was built last: ask
+# for the opt output directory instead of trusting it.
+SCENE_INFO="$(bazel info -c opt bazel-bin)/cc/tools/scene_info"
+
+step "load scenes (scene_info)"
+"$PY" experiments/scenes.py --profile "$PROFILE" --out "$OUT" \
+  --scene_info "$SCENE_INFO"
+
+# ---------------------------------------------------------------------------
+# LATER STAGES GO HERE (each appends raw records under $RESULTS and has a
+# generator in analysis/make_all.py):
+#   - kd-tree build + render runs, the report's nine configurations (Tables 2-10)
+#   - robustness runs
+#   - accuracy vs time
+#   - Embree comparison
+# ---------------------------------------------------------------------------
+
+step "analysis (tables, figures, macros)"
+"$PY" -m analysis.make_all --results "$RESULTS" \
+  --manifest data/manifest.json --out report/generated
+
+step "report (LaTeX)"
+mkdir -p report/build
+latexmk -pdf -cd -interaction=nonstopmode -halt-on-error \
+  -output-directory=build report/main.tex
+cp report/build/main.pdf "$OUT/report.pdf"
+echo
+echo "reproduce: report at $OUT/report.pdf"
