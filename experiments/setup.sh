@@ -15,6 +15,7 @@ PKGS=(
   libbenchmark-dev       # Google Benchmark: micro-benchmarks
   libassimp-dev          # assimp: mesh import (OBJ, PLY, OFF, AC3D, glTF, ...)
   libpng-dev             # libpng: PNG output
+  zlib1g-dev             # zlib: gzip-compressed meshes (.ply.gz)
   libtbb-dev             # oneTBB: parallel rendering / building
   libembree-dev          # Embree 3: the speed to beat
   python3 python3-pandas python3-matplotlib python3-tqdm  # analysis

@@ -1,6 +1,7 @@
 #include "cc/kdtree/builder.h"
 
 #include <chrono>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,8 @@
 
 namespace kdtree {
 namespace {
+
+const AABB kEverywhere(Vec3(-INFINITY, -INFINITY, -INFINITY), Vec3(INFINITY, INFINITY, INFINITY));
 
 class Builder {
  public:
@@ -87,8 +90,10 @@ class Builder {
       const float lo = r.box.lo[axis], hi = r.box.hi[axis];
       if (config_.use_clipping && lo < pos && hi > pos) {
         AABB lb, rb;
+        // Seed-compatible mode: the parts' boxes are not intersected with the
+        // reference's box (closest to the report's row 18: N_CL 4,595 vs 4,983).
         const ClipCase c = ClipTriangle(soup_.a(r.tri), soup_.b(r.tri), soup_.c(r.tri), axis, pos,
-                                        r.box, conservative, &lb, &rb);
+                                        conservative ? r.box : kEverywhere, conservative, &lb, &rb);
         if (c != ClipCase::kNotStraddling) {
           ++counters().clipped;
           PushClipped(lb, r.tri, left_box, /*left=*/true);
