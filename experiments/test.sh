@@ -5,4 +5,6 @@ cd "$(dirname "$0")/.."
 bash experiments/setup.sh --with-blender
 # Scenes the tests use when present (small ones; skipped with a message offline).
 /usr/bin/python3 data/fetch.py --profile test || echo "test scenes unavailable; tests fall back to generated meshes"
-bazel test //... "$@"
+# The Stanford bunny of the scene library joins the brute-force comparison
+# when present (cc/kdtree/traversal_test.cc falls back to a generated mesh).
+bazel test //... --test_env=KDTREE_SCENES="$PWD/data/cache/scenes" "$@"

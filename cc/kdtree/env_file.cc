@@ -78,11 +78,11 @@ class Parser {
 
   bool Expect(const std::string& what, const Token& after) {
     if (pos_ >= tokens_.size()) {
-      Error(after.line, "expected '" + what + "' after '" + after.text + "', got end of file");
+      (void)Error(after.line, "expected '" + what + "' after '" + after.text + "', got end of file");
       return false;
     }
     if (tokens_[pos_].text != what) {
-      Error(tokens_[pos_].line, "expected '" + what + "' after '" + after.text + "', got '" +
+      (void)Error(tokens_[pos_].line, "expected '" + what + "' after '" + after.text + "', got '" +
                                     tokens_[pos_].text + "'");
       return false;
     }

@@ -5,12 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "cc/io/mesh_loader.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/stats.h"
@@ -27,6 +31,21 @@ struct Scene {
 };
 
 TriangleSoup MakeSoup(const std::string& name) {
+  if (name == "bunny") {
+    // The Stanford bunny when the scene library is present (experiments/test.sh
+    // passes --test_env=KDTREE_SCENES=.../data/cache/scenes), else a generated
+    // closed mesh of similar size.
+    const char* dir = std::getenv("KDTREE_SCENES");
+    if (dir != nullptr) {
+      absl::StatusOr<TriangleSoup> bunny = LoadMesh(std::string(dir) + "/bunny.obj");
+      if (bunny.ok()) {
+        std::printf("bunny: the Stanford bunny, %zu triangles\n", bunny->size());
+        return *std::move(bunny);
+      }
+      std::printf("bunny: %s; using a generated closed mesh\n", bunny.status().ToString().c_str());
+    }
+    return testing::BumpySphere(6, 11);  // 81,920 triangles
+  }
   if (name == "sphere") return testing::BumpySphere(4, 1);  // 5,120 triangles
   if (name == "voxels") return testing::VoxelGrid(14, 8, 14, 2);
   if (name == "thin") return testing::ThinSoup(3000, 3);
@@ -54,7 +73,17 @@ const Scene& GetScene(const std::string& name) {
   s.rays.insert(s.rays.end(), cam.begin(), cam.end());
   BruteForce bf(s.soup);
   s.reference.reserve(s.rays.size());
-  for (size_t i = 0; i < s.rays.size() - cam.size(); ++i) s.reference.push_back(bf.Intersect(s.rays[i]));
+  // Random rays: every triangle, on all cores.
+  const size_t n_random = s.rays.size() - cam.size();
+  s.reference.resize(n_random);
+  const unsigned workers = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (unsigned w = 0; w < workers; ++w) {
+    pool.emplace_back([&, w] {
+      for (size_t i = w; i < n_random; i += workers) s.reference[i] = bf.Intersect(s.rays[i]);
+    });
+  }
+  for (std::thread& t : pool) t.join();
   // Camera rays: the rays of one image row lie in one plane through the eye,
   // so only triangles that reach that plane (with a generous margin for the
   // rounding of the ray directions) can be hit; the reference tests all of them.
@@ -131,7 +160,7 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
 
 INSTANTIATE_TEST_SUITE_P(
     AllPresets, VsBruteForce,
-    ::testing::Combine(::testing::Values("sphere", "voxels", "thin", "flat", "tiny"),
+    ::testing::Combine(::testing::Values("bunny", "sphere", "voxels", "thin", "flat", "tiny"),
                        ::testing::ValuesIn(PresetNames())),
     [](const ::testing::TestParamInfo<VsBruteForce::ParamType>& info) {
       std::string name = absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param));

@@ -1,0 +1,159 @@
+// Build benchmark: every preset on one scene, single thread, optimised build.
+//
+//   bazel run --config=opt //cc/bench:build_bench -- --mesh PATH --out FILE
+//
+// For each preset the tree is first validated (tree invariants, and
+// --check_rays seeded rays against the brute-force reference), then built
+// --repeats times; one JSON line per preset goes to --out with the median T_B,
+// every run's T_B and the tree statistics (cc/kdtree/stats.h).
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
+#include "cc/io/soup_cache.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/stats.h"
+#include "cc/kdtree/traversal.h"
+
+ABSL_FLAG(std::string, mesh, "", "mesh file to build on");
+ABSL_FLAG(std::string, name, "", "scene name for the records (default: the file name)");
+ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "triangle-soup cache ('' for none)");
+ABSL_FLAG(std::string, presets, "", "comma-separated presets (default: the report's nine)");
+ABSL_FLAG(int, repeats, 5, "builds per preset; the median is reported");
+ABSL_FLAG(int, check_rays, 200, "rays checked against brute force before timing");
+ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended)");
+
+namespace kdtree {
+namespace {
+
+// Rays from around the box towards random points of random triangles.
+std::vector<Ray> CheckRays(const TriangleSoup& soup, int count) {
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const AABB box = soup.Bounds();
+  const Vec3 centre = (box.lo + box.hi) * 0.5f;
+  const float radius = Length(box.Extent());
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    const size_t t = rng() % soup.size();
+    float b1 = u(rng), b2 = u(rng);
+    if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+    const Vec3 target = soup.a(t) + (soup.b(t) - soup.a(t)) * b1 + (soup.c(t) - soup.a(t)) * b2;
+    const Vec3 origin =
+        centre + Normalize(Vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f)) * radius;
+    rays.push_back(Ray{origin, target - origin});
+  }
+  return rays;
+}
+
+int Run() {
+  const std::string mesh = absl::GetFlag(FLAGS_mesh);
+  if (mesh.empty()) {
+    std::fprintf(stderr, "build_bench: --mesh is required\n");
+    return 2;
+  }
+  LoadReport report;
+  absl::StatusOr<TriangleSoup> soup =
+      absl::GetFlag(FLAGS_cache_dir).empty()
+          ? LoadMesh(mesh, &report)
+          : LoadMeshCached(mesh, absl::GetFlag(FLAGS_cache_dir), &report);
+  if (!soup.ok()) {
+    std::fprintf(stderr, "build_bench: %s\n", soup.status().ToString().c_str());
+    return 1;
+  }
+  std::string name = absl::GetFlag(FLAGS_name);
+  if (name.empty()) name = mesh.substr(mesh.find_last_of('/') + 1);
+  std::vector<std::string> presets = PresetNames();
+  if (!absl::GetFlag(FLAGS_presets).empty()) {
+    presets = absl::StrSplit(absl::GetFlag(FLAGS_presets), ',');
+  }
+  std::FILE* out = stdout;
+  if (!absl::GetFlag(FLAGS_out).empty()) {
+    out = std::fopen(absl::GetFlag(FLAGS_out).c_str(), "a");
+    if (!out) {
+      std::fprintf(stderr, "build_bench: cannot open %s\n", absl::GetFlag(FLAGS_out).c_str());
+      return 1;
+    }
+  }
+  std::fprintf(stderr, "%s: %zu triangles (loaded in %.2f s%s)\n", name.c_str(), soup->size(),
+               report.load_seconds, report.from_cache ? ", cached" : "");
+  const std::vector<Ray> rays = CheckRays(*soup, absl::GetFlag(FLAGS_check_rays));
+  const BruteForce brute(*soup);
+  std::vector<Hit> reference;
+  for (const Ray& r : rays) reference.push_back(brute.Intersect(r));
+
+  for (const std::string& preset : presets) {
+    absl::StatusOr<Config> config = Preset(preset);
+    if (!config.ok()) {
+      std::fprintf(stderr, "build_bench: %s\n", config.status().ToString().c_str());
+      return 2;
+    }
+    // Validate before timing.
+    absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
+    if (!tree.ok()) {
+      std::fprintf(stderr, "build_bench: %s: %s\n", preset.c_str(),
+                   tree.status().ToString().c_str());
+      return 1;
+    }
+    const TreeStats stats = ComputeStats(*tree);
+    int mismatches = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      const Hit h = Intersect(*tree, rays[i]);
+      if (h.hit() != reference[i].hit() ||
+          (h.hit() && h.tri != reference[i].tri && h.t != reference[i].t)) {
+        ++mismatches;
+      }
+    }
+    if (mismatches > 0 || stats.invalid_leaf_boxes > 0 || stats.lost_planar > 0) {
+      std::fprintf(stderr, "build_bench: %s: validation failed (%d of %zu rays differ)\n",
+                   preset.c_str(), mismatches, rays.size());
+      return 1;
+    }
+    tree = absl::StatusOr<KdTree>();  // free it before timing
+    std::vector<double> runs;
+    for (int r = 0; r < absl::GetFlag(FLAGS_repeats); ++r) {
+      absl::StatusOr<KdTree> t = BuildKdTree(*soup, *config);
+      runs.push_back(t->build_seconds);
+    }
+    std::vector<double> sorted = runs;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+    std::fprintf(out,
+                 "{\"scene\": \"%s\", \"mesh\": \"%s\", \"n_tri\": %zu, \"preset\": \"%s\", "
+                 "\"threads\": 1, \"optimized\": %s, \"T_B\": %.6f, \"T_B_runs\": [%s], "
+                 "\"checked_rays\": %zu, \"stats\": %s}\n",
+                 name.c_str(), mesh.c_str(), soup->size(), preset.c_str(),
+#ifdef __OPTIMIZE__
+                 "true",
+#else
+                 "false",
+#endif
+                 median, absl::StrJoin(runs, ", ", [](std::string* o, double v) {
+                   absl::StrAppendFormat(o, "%.6f", v);
+                 }).c_str(),
+                 rays.size(), StatsToJson(stats).c_str());
+    std::fflush(out);
+    std::fprintf(stderr, "  %-18s T_B %8.3f s  N_I %10llu  N_TP %11llu\n", preset.c_str(),
+                 median, static_cast<unsigned long long>(stats.inner),
+                 static_cast<unsigned long long>(stats.leaf_refs));
+  }
+  if (out != stdout) std::fclose(out);
+  return 0;
+}
+
+}  // namespace
+}  // namespace kdtree
+
+int main(int argc, char** argv) {
+  absl::ParseCommandLine(argc, argv);
+  return kdtree::Run();
+}
