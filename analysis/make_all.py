@@ -27,6 +27,7 @@ from analysis import context  # noqa: E402
 from analysis import figures  # noqa: E402
 from analysis import latex  # noqa: E402
 from analysis import machine  # noqa: E402
+from analysis import row18  # noqa: E402
 from analysis import seed_tables  # noqa: E402
 from analysis import table1  # noqa: E402
 
@@ -35,6 +36,7 @@ GENERATORS = [
     machine,
     table1,
     seed_tables,
+    row18,
     figures,
     # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
 ]

@@ -33,7 +33,7 @@ elif [ "$fetch_rc" -ne 0 ]; then
 fi
 
 step "build tools"
-bazel build -c opt //cc/tools:scene_info
+bazel build -c opt //cc/tools:scene_info //cc/seed:row18_tool
 # The bazel-bin symlink follows whichever configuration was built last: ask
 # for the opt output directory instead of trusting it.
 SCENE_INFO="$(bazel info -c opt bazel-bin)/cc/tools/scene_info"
@@ -41,6 +41,15 @@ SCENE_INFO="$(bazel info -c opt bazel-bin)/cc/tools/scene_info"
 step "load scenes (scene_info)"
 "$PY" experiments/scenes.py --profile "$PROFILE" --out "$OUT" \
   --scene_info "$SCENE_INFO"
+
+step "scene 18 in the seed-compatible mode (row18.jsonl)"
+# Blender makes Suzanne headless; deterministic, so it is rerun every time.
+mkdir -p "$RESULTS"
+ROW18_TMP="$(mktemp -d)"
+"$(bazel info -c opt bazel-bin)/cc/seed/row18_tool" --work_dir "$ROW18_TMP" \
+  --expected "$ROOT/data/seed/row18.csv" > "$RESULTS/row18.jsonl.new"
+mv "$RESULTS/row18.jsonl.new" "$RESULTS/row18.jsonl"
+rm -rf "$ROW18_TMP"
 
 # ---------------------------------------------------------------------------
 # LATER STAGES GO HERE (each appends raw records under $RESULTS and has a

@@ -11,14 +11,15 @@
 #include "cc/kdtree/stats.h"
 #include "cc/seed/row18.h"
 
-ABSL_FLAG(std::string, mesh, "", "Suzanne mesh (empty: make it with Blender in /tmp)");
+ABSL_FLAG(std::string, mesh, "", "Suzanne mesh (empty: make it with Blender in --work_dir)");
+ABSL_FLAG(std::string, work_dir, "/tmp", "where Blender writes suzanne.obj");
 ABSL_FLAG(std::string, expected, "data/seed/row18.csv", "the report's row 18");
 
 int main(int argc, char** argv) {
   absl::ParseCommandLine(argc, argv);
   std::string mesh = absl::GetFlag(FLAGS_mesh);
   if (mesh.empty()) {
-    absl::StatusOr<std::string> made = kdtree::MakeSuzanneWithBlender("/tmp");
+    absl::StatusOr<std::string> made = kdtree::MakeSuzanneWithBlender(absl::GetFlag(FLAGS_work_dir));
     if (!made.ok()) {
       std::fprintf(stderr, "%s\n", made.status().ToString().c_str());
       return 1;
