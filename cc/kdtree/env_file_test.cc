@@ -87,6 +87,14 @@ TEST(EnvFile, ErrorsNameFileLineAndReason) {
   }
 }
 
+TEST(EnvFile, ExperimentPresetFilesEqualTheNamedPresets) {
+  for (const std::string& name : PresetNames()) {
+    absl::StatusOr<EnvResult> r = LoadEnvironmentFile("experiments/presets/" + name + ".env");
+    ASSERT_TRUE(r.ok()) << r.status();
+    EXPECT_EQ(r->config, *Preset(name)) << name;
+  }
+}
+
 TEST(EnvFile, MissingFileIsNamed) {
   absl::StatusOr<EnvResult> r = LoadEnvironmentFile("/nonexistent/k.env");
   ASSERT_FALSE(r.ok());
