@@ -23,8 +23,11 @@ if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(
         __file__))))
 
+from analysis import claims  # noqa: E402
 from analysis import context  # noqa: E402
 from analysis import figures  # noqa: E402
+from analysis import kdtree_figures  # noqa: E402
+from analysis import kdtree_tables  # noqa: E402
 from analysis import latex  # noqa: E402
 from analysis import machine  # noqa: E402
 from analysis import row18  # noqa: E402
@@ -38,6 +41,9 @@ GENERATORS = [
     seed_tables,
     row18,
     figures,
+    kdtree_tables,
+    kdtree_figures,
+    claims,
     # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
 ]
 

@@ -15,7 +15,9 @@ EXPECTED_MACROS = [
     "NumScenesWithExpected", "NumScenesMatchExpected", "TotalTriangles",
     "LargestScene", "LargestSceneTriangles", "NumReportScenesCovered",
     "NumReportScenes", "Profile",
-] + row18.MACROS
+] + row18.MACROS + [
+    "NumKdScenes", "NumKdRuns", "ClaimsTotal", "ClaimsConfirmed",
+    "ClaimsRefuted", "ClaimsMixed"]
 
 
 class MakeAllTest(unittest.TestCase):

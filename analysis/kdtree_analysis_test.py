@@ -1,0 +1,124 @@
+"""Tables 2-10, figures 1-2 and the claims on synthetic kd-tree records."""
+
+import json
+import os
+import tempfile
+import unittest
+
+from analysis import claims
+from analysis import context
+from analysis import kdtree_figures
+from analysis import kdtree_results as kr
+from analysis import kdtree_tables
+
+
+def record(scene, preset, **over):
+    rec = {"ok": True, "scene": scene, "preset": preset, "n_tri": 1000,
+           "T_B": 0.5, "T_R": 1.0, "perf_krays": 640.0, "N_IT": 10.0,
+           "N_TR": 20.0, "P_hit": 300, "P_miss": 340, "S_hit": 100,
+           "S_miss": 200,
+           "tree": {"N_I": 99, "N_L": 100, "N_TP": 500, "N_AP": 5.0,
+                    "mem_report_mb": 0.01, "R_E": 0.1, "D_max": 24,
+                    "D_avg": 18.0, "N_CL": 0, "N_PR": 0}}
+    for key, value in over.items():
+        if key in rec["tree"] or key == "mem_report_mb":
+            rec["tree"][key] = value
+        else:
+            rec[key] = value
+    return rec
+
+
+def fixture(tmp):
+    results = os.path.join(tmp, "results")
+    os.makedirs(results)
+    recs = []
+    for scene in ("alpha", "beta", "gamma"):
+        for v in kr.VARIANTS:
+            over = {}
+            if v == "median-16-2":
+                over = {"N_IT": 100.0, "N_TR": 5.0, "N_AP": 40.0}
+            if v == "clipping":
+                over = {"N_CL": 3000}
+            if v == "pruning":
+                over = {"N_PR": 900, "T_R": 0.8}
+            if v == "clipping-pruning":
+                over = {"N_PR": 100, "N_CL": 2000, "T_R": 0.9}
+            recs.append(record(scene, v, **over))
+    recs.append({"ok": False, "scene": "alpha", "preset": "binning-8"})
+    with open(os.path.join(results, kr.KDTREE_FILE), "w") as f:
+        for r in recs:
+            f.write(json.dumps(r) + "\n")
+    manifest = os.path.join(tmp, "manifest.json")
+    with open(manifest, "w") as f:
+        json.dump({"scenes": [{"name": "gamma"}, {"name": "alpha"},
+                              {"name": "beta"}]}, f)
+    return results, manifest
+
+
+class KdtreeAnalysisTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        results, manifest = fixture(self.tmp.name)
+        self.out = os.path.join(self.tmp.name, "out")
+        os.makedirs(self.out)
+        self.ctx = context.Context(results, manifest, self.out)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def read(self, name):
+        with open(os.path.join(self.out, name)) as f:
+            return f.read()
+
+    def test_frame_keeps_successful_records_in_manifest_order(self):
+        df = kr.frame(self.ctx.results(kr.KDTREE_FILE), self.ctx.manifest)
+        self.assertEqual(len(df), 27)
+        self.assertEqual(kr.scenes_in_order(df), ["gamma", "alpha", "beta"])
+        self.assertEqual(df.loc[("alpha", "clipping")]["N_CL"], 3000)
+        self.assertEqual(df.loc[("alpha", "binning-8")]["T_B"], 0.5)
+
+    def test_nine_tables_with_three_variants_each(self):
+        macros = kdtree_tables.generate(self.ctx)
+        self.assertEqual(macros["NumKdScenes"][0], "3")
+        for n in range(2, 11):
+            text = self.read("table%d.tex" % n)
+            self.assertIn("tab:t%d" % n, text)
+        self.assertIn("Spatial median 16/2", self.read("table2.tex"))
+        self.assertIn("3,000", self.read("table10.tex"))
+        self.assertIn("0.010", self.read("table5.tex"))
+        rays = self.read("table1_rays.tex")
+        self.assertIn("340", rays)
+
+    def test_claims_have_verdicts_from_the_numbers(self):
+        df = kr.frame(self.ctx.results(kr.KDTREE_FILE), self.ctx.manifest)
+        by_id = {c[0][0]: c for c in claims.evaluate(df)}
+        self.assertEqual(by_id["depth"][4], "confirmed")   # 10 < 100, 20 > 5
+        self.assertEqual(by_id["depth"][1:3], (3, 3))
+        self.assertAlmostEqual(by_id["depth"][3], 0.1)
+        self.assertEqual(by_id["manyclipped"][4], "confirmed")  # 3000 > 1000
+        self.assertEqual(by_id["fewerpruned"][4], "confirmed")  # 100 < 900
+        self.assertEqual(by_id["clipnotbetter"][4], "confirmed")  # 0.9 >= 0.8*.97
+        self.assertEqual(by_id["allaxes"][4], "refuted")  # equal N_L
+        macros = claims.generate(self.ctx)
+        self.assertEqual(macros["ClaimsTotal"][0], str(len(claims.CLAIMS)))
+        self.assertIn("confirmed", self.read("claims.tex"))
+
+    def test_figures_are_written(self):
+        kdtree_figures.generate(self.ctx)
+        for name in ("fig1_build.pdf", "fig2_render.pdf"):
+            with open(os.path.join(self.out, name), "rb") as f:
+                self.assertEqual(f.read(4), b"%PDF")
+
+    def test_no_runs_still_makes_every_file(self):
+        empty = context.Context(os.path.join(self.tmp.name, "none"),
+                                os.path.join(self.tmp.name, "none.json"),
+                                self.out)
+        kdtree_tables.generate(empty)
+        kdtree_figures.generate(empty)
+        claims.generate(empty)
+        self.assertIn("no kd-tree runs", self.read("table3.tex"))
+        self.assertIn("not tested", self.read("claims.tex"))
+
+
+if __name__ == "__main__":
+    unittest.main()

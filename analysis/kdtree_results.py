@@ -1,0 +1,96 @@
+"""The kd-tree runs (results/kdtree.jsonl, written by experiments/run_matrix.py
+from //cc/tools:kdrt) as one tidy pandas DataFrame: a row per (scene,
+variant), the newest successful record of each.
+"""
+
+import pandas as pd
+
+KDTREE_FILE = "kdtree.jsonl"
+
+VARIANTS = ["median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
+            "binning-8", "binning-32", "clipping", "pruning",
+            "clipping-pruning"]
+TITLES = {
+    "median-16-2": "Spatial median 16/2",
+    "median-24-2": "Spatial median 24/2",
+    "median-24-8": "Spatial median 24/8",
+    "binning-8-driving": "Binning 8 (driving axis)",
+    "binning-8": "Binning 8",
+    "binning-32": "Binning 32",
+    "clipping": "Clipping",
+    "pruning": "Pruning",
+    "clipping-pruning": "Clipping pruning",
+}
+# The report's three groups of three columns.
+GROUPS = [VARIANTS[0:3], VARIANTS[3:6], VARIANTS[6:9]]
+
+# Column -> where it is in a kdrt record (first match wins). kdrt nests the
+# tree statistics under "tree" or "stats"; accept both, and flat.
+FIELDS = {
+    "T_B": ["T_B"], "T_R": ["T_R"], "perf": ["perf_krays", "perf"],
+    "all_rays_per_s": ["all_rays_per_s"],
+    "N_IT": ["N_IT"], "N_TR": ["N_TR"],
+    "N_I": ["N_I"], "N_L": ["N_L"], "N_TP": ["N_TP"], "N_AP": ["N_AP"],
+    "N_empty": ["N_empty"],
+    "mem": ["mem_report_mb", "mem"], "tree_bytes": ["tree_bytes"],
+    "R_E": ["R_E"], "D_max": ["D_max"], "D_avg": ["D_avg"],
+    "N_CL": ["N_CL"], "N_PR": ["N_PR"], "N_lost_planar": ["N_lost_planar"],
+    "sah_cost": ["sah_cost"],
+    "P_hit": ["P_hit"], "P_miss": ["P_miss"], "S_hit": ["S_hit"],
+    "S_miss": ["S_miss"], "n_tri": ["n_tri"],
+    "embree_T_B": ["embree.T_B"], "embree_T_R": ["embree.T_R"],
+    "embree_perf": ["embree.perf_krays", "embree.perf"],
+    "embree_disagree": ["embree.disagreements", "embree.disagree"],
+}
+
+
+def _get(rec, path):
+    cur = rec
+    for part in path.split("."):
+        if not isinstance(cur, dict) or part not in cur:
+            return None
+        cur = cur[part]
+    return cur
+
+
+def field(rec, name):
+    for path in FIELDS[name]:
+        for prefix in ("", "tree.", "stats."):
+            value = _get(rec, prefix + path)
+            if value is not None and not isinstance(value, dict):
+                return value
+    return None
+
+
+def frame(records, manifest):
+    """DataFrame indexed by (scene, variant) with every FIELDS column plus
+    number (manifest order) and report_scene."""
+    order = {s["name"]: i for i, s in enumerate(manifest)}
+    report = {s["name"]: s.get("report_scene") for s in manifest}
+    latest = {}
+    for rec in records:
+        if rec.get("ok") and rec.get("scene") and rec.get("preset"):
+            latest[(rec["scene"], rec["preset"])] = rec
+    rows = []
+    for (scene, variant), rec in latest.items():
+        row = {"scene": scene, "variant": variant,
+               "order": order.get(scene, len(order)),
+               "report_scene": report.get(scene)}
+        for name in FIELDS:
+            row[name] = field(rec, name)
+        rows.append(row)
+    if not rows:
+        return pd.DataFrame(columns=["scene", "variant", "order",
+                                     "report_scene"] + list(FIELDS))
+    df = pd.DataFrame(rows).sort_values(["order", "scene"])
+    return df.set_index(["scene", "variant"])
+
+
+def scenes_in_order(df):
+    if df.empty:
+        return []
+    seen = []
+    for scene in df.reset_index().sort_values(["order", "scene"])["scene"]:
+        if scene not in seen:
+            seen.append(scene)
+    return seen
