@@ -1,0 +1,266 @@
+"""Validates data/manifest.json (no network, no cache needed)."""
+
+import json
+import math
+import os
+import re
+import sys
+import unittest
+from pathlib import Path
+
+# Not resolved: under bazel the runfiles copy of manifest.json is beside us.
+HERE = Path(__file__).absolute().parent
+sys.path.insert(0, str(HERE))
+
+import fetch  # noqa: E402  (data/fetch.py: the code that reads the manifest)
+
+MANIFEST = HERE / "manifest.json"
+
+REPORT_SCENES = {
+    1: "A10", 2: "Armadillo", 3: "asianDragon", 4: "city2", 5: "city", 6: "conference",
+    7: "fforest", 8: "park", 9: "sibenik", 10: "teapots", 11: "buddha", 12: "hairball",
+    13: "lost.empire", 14: "powerplant", 15: "rungholt", 16: "san-miguel", 17: "sponza",
+    18: "suzanne",
+}
+KINDS = {"package", "npm", "generator", "blender", "url"}
+ROLES = {"original", "stand-in", "variant", "extra"}
+GENERATOR_KINDS = {"hairball", "voxel", "teapots", "city", "forest", "subdivide"}
+FIELDS = {
+    "name", "report_scene", "report_name", "role", "kind", "package", "npm_version", "path",
+    "member", "url", "convert", "generator", "format", "licence", "source",
+    "expected_triangles", "bounds", "up_axis", "framing", "profiles", "optional", "camera",
+    "light", "notes",
+}
+FORMATS = {"obj", "ply", "off", "blend", "glb", "ac"}
+
+
+def is_vec3(v):
+    return (isinstance(v, list) and len(v) == 3
+            and all(isinstance(x, (int, float)) and math.isfinite(x) for x in v))
+
+
+class ManifestTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        with open(MANIFEST, encoding="utf-8") as f:
+            cls.manifest = json.load(f)
+        cls.scenes = cls.manifest["scenes"]
+
+    def test_top_level(self):
+        self.assertEqual(set(self.manifest["profiles"]), set(fetch.PROFILES))
+        self.assertIsInstance(self.manifest["missing"], list)
+        self.assertGreaterEqual(len(self.scenes), 20)
+
+    def test_every_field_present_and_typed(self):
+        for s in self.scenes:
+            with self.subTest(scene=s.get("name")):
+                self.assertEqual(set(s), FIELDS)
+                self.assertRegex(s["name"], r"^[a-z0-9][a-z0-9-]*$")
+                self.assertIn(s["kind"], KINDS)
+                self.assertIn(s["role"], ROLES)
+                self.assertIn(s["format"], FORMATS)
+                self.assertIn(s["up_axis"], (1, 2))
+                self.assertIn(s["framing"], ("object", "landscape", "interior"))
+                self.assertIsInstance(s["optional"], bool)
+                self.assertTrue(s["licence"] and isinstance(s["licence"], str))
+                self.assertTrue(s["source"] and isinstance(s["source"], str))
+                et = s["expected_triangles"]
+                self.assertTrue(isinstance(et, int) and et > 0, et)
+
+    def test_names_unique(self):
+        names = [s["name"] for s in self.scenes]
+        self.assertEqual(len(names), len(set(names)))
+
+    def test_profiles_valid(self):
+        for s in self.scenes:
+            with self.subTest(scene=s["name"]):
+                self.assertTrue(s["profiles"])
+                self.assertTrue(set(s["profiles"]) <= set(fetch.PROFILES), s["profiles"])
+                self.assertEqual(len(s["profiles"]), len(set(s["profiles"])))
+        for profile in fetch.PROFILES:
+            self.assertTrue(any(profile in s["profiles"] for s in self.scenes), profile)
+
+    def test_profiles_nest_quick_standard_full(self):
+        # quick is a subset of standard, standard of full.
+        def members(p):
+            return {s["name"] for s in self.scenes if p in s["profiles"]}
+        self.assertLessEqual(members("quick"), members("standard"))
+        self.assertLessEqual(members("standard"), members("full"))
+
+    def test_test_profile_is_tiny(self):
+        test = [s for s in self.scenes if "test" in s["profiles"]]
+        names = {s["name"] for s in test}
+        self.assertIn("bunny", names)
+        self.assertIn("suzanne", names)
+        self.assertTrue(any(s["kind"] == "generator" for s in test))
+        self.assertLessEqual(sum(s["expected_triangles"] for s in test), 150000)
+        self.assertFalse(any(s["kind"] == "url" for s in test))
+
+    def test_report_scene_references(self):
+        for s in self.scenes:
+            with self.subTest(scene=s["name"]):
+                rs = s["report_scene"]
+                if rs is None:
+                    self.assertIsNone(s["report_name"])
+                    self.assertEqual(s["role"], "extra")
+                else:
+                    self.assertIn(rs, REPORT_SCENES)
+                    self.assertEqual(s["report_name"], REPORT_SCENES[rs])
+                    self.assertNotEqual(s["role"], "extra")
+
+    def test_one_original_and_one_stand_in_per_report_scene(self):
+        for role in ("original", "stand-in"):
+            seen = {}
+            for s in self.scenes:
+                if s["role"] == role:
+                    self.assertNotIn(s["report_scene"], seen,
+                                     f"{role} of scene {s['report_scene']}: "
+                                     f"{seen.get(s['report_scene'])} and {s['name']}")
+                    seen[s["report_scene"]] = s["name"]
+
+    def test_all_18_report_scenes_referenced_or_missing(self):
+        referenced = {s["report_scene"] for s in self.scenes if s["report_scene"]}
+        missing = {}
+        for m in self.manifest["missing"]:
+            self.assertEqual(set(m), {"report_scene", "report_name", "what", "reason"})
+            self.assertEqual(m["report_name"], REPORT_SCENES[m["report_scene"]])
+            self.assertGreater(len(m["reason"]), 20)
+            missing.setdefault(m["report_scene"], []).append(m["what"])
+        for n in REPORT_SCENES:
+            self.assertTrue(n in referenced or n in missing, f"report scene {n} not covered")
+        # A report scene with no stand-in nor original entry must say why.
+        for n in REPORT_SCENES:
+            roles = {s["role"] for s in self.scenes if s["report_scene"] == n}
+            if not roles & {"stand-in", "original"}:
+                self.assertIn(n, missing)
+
+    def test_source_fields_by_kind(self):
+        debian_name = re.compile(r"^[a-z0-9][a-z0-9+.-]+$")
+        names = {s["name"]: s for s in self.scenes}
+        for s in self.scenes:
+            with self.subTest(scene=s["name"]):
+                k = s["kind"]
+                if k == "package":
+                    self.assertRegex(s["package"], debian_name)
+                    self.assertTrue(s["path"] and not s["path"].startswith("/"))
+                    if s["member"]:
+                        self.assertTrue(s["path"].endswith((".tar.gz", ".zip", ".pk3")))
+                    target = s["member"] or s["path"]
+                    self.assertEqual(target.rsplit(".", 1)[-1].lower(), s["format"])
+                    self.assertIn(s["package"], s["licence"])  # read from its copyright file
+                elif k == "npm":
+                    self.assertTrue(s["package"] and s["npm_version"])
+                    self.assertTrue(s["path"].startswith("package/"))
+                elif k == "generator":
+                    g = s["generator"]
+                    self.assertIn(g["kind"], GENERATOR_KINDS)
+                    self.assertIsInstance(g["seed"], int)
+                    self.assertGreater(g["triangles"], 0)
+                    self.assertEqual(s["format"], "ply")
+                    if g["kind"] in ("teapots", "subdivide"):
+                        self.assertIn(g.get("input"), names)
+                        # The input is fetched in every profile that needs it.
+                        self.assertTrue(set(s["profiles"]) <= set(names[g["input"]]["profiles"]))
+                    if g["kind"] in ("hairball", "city", "forest"):  # these hit their target
+                        self.assertLessEqual(abs(s["expected_triangles"] - g["triangles"]),
+                                             0.01 * g["triangles"])
+                elif k == "url":
+                    self.assertTrue(s["url"].startswith("https://casual-effects.com/"))
+                    self.assertTrue(s["member"])
+                    self.assertTrue(s["optional"])
+                    self.assertEqual(s["role"], "original")
+                elif k == "blender":
+                    self.assertEqual(s["name"], "suzanne")
+                    self.assertEqual(s["expected_triangles"], 968)
+                if k != "generator":
+                    self.assertIsNone(s["generator"])
+
+    def test_big_packages_only_in_full(self):
+        for s in self.scenes:
+            if s["package"] in ("flightgear-data-base", "supertuxkart-data", "nexuiz-data"):
+                self.assertEqual(s["profiles"], ["full"], s["name"])
+            if s["kind"] == "url":
+                self.assertEqual(s["profiles"], ["full"], s["name"])
+
+    def test_sizes_per_profile(self):
+        for s in self.scenes:
+            if "quick" in s["profiles"] or "test" in s["profiles"]:
+                self.assertLessEqual(s["expected_triangles"], 250000, s["name"])
+            if "standard" in s["profiles"]:
+                self.assertLessEqual(s["expected_triangles"], 1500000, s["name"])
+
+    def test_camera_and_light(self):
+        for s in self.scenes:
+            with self.subTest(scene=s["name"]):
+                cam, light, bounds = s["camera"], s["light"], s["bounds"]
+                if cam is None:
+                    self.assertIsNone(light)
+                    self.assertEqual(s["kind"], "url")  # only unmeasured originals
+                    continue
+                self.assertEqual(set(cam), {"position", "look_at", "up", "fov_deg"})
+                for key in ("position", "look_at", "up"):
+                    self.assertTrue(is_vec3(cam[key]), key)
+                self.assertTrue(0 < cam["fov_deg"] < 180)
+                self.assertEqual(set(light), {"position"})
+                self.assertTrue(is_vec3(light["position"]))
+                self.assertTrue(is_vec3(bounds[0]) and is_vec3(bounds[1]))
+                # The default is what the documented rule gives for these bounds.
+                want_cam, want_light = fetch.camera_from_bounds(
+                    bounds[0], bounds[1], s["up_axis"], s["framing"])
+                self.assertEqual(cam, want_cam)
+                self.assertEqual(light, want_light)
+                # Camera outside the box, looking at its centre.
+                lo, hi = bounds
+                inside = all(a <= p <= b for a, p, b in zip(lo, cam["position"], hi))
+                self.assertFalse(inside)
+
+    def test_selection_orders_inputs_first(self):
+        for profile in fetch.PROFILES:
+            order = [s["name"] for s in fetch.select(self.manifest, profile, [])]
+            for s in fetch.select(self.manifest, profile, []):
+                g = s["generator"] or {}
+                if g.get("input"):
+                    self.assertLess(order.index(g["input"]), order.index(s["name"]))
+        names = [s["name"] for s in fetch.select(self.manifest, "full", ["teapots"])]
+        self.assertEqual(names, ["teapot", "teapots"])
+
+
+class PlainCounterTest(unittest.TestCase):
+    """fetch.py's fallback counter (used when mesh_info cannot be built)."""
+
+    def setUp(self):
+        self.dir = Path(os.environ.get("TEST_TMPDIR", "/tmp"))
+
+    def write(self, name, data):
+        p = self.dir / name
+        p.write_bytes(data)
+        return p
+
+    def test_obj_fans(self):
+        p = self.write("q.obj", b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 1/1 2/2 3/3\n")
+        self.assertEqual(fetch.count_plain(p), 3)
+
+    def test_off(self):
+        p = self.write("q.off", b"OFF\n# c\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n3 0 1 2\n")
+        self.assertEqual(fetch.count_plain(p), 3)
+
+    def test_binary_ply_from_teapot_converter(self):
+        js = ("exports.positions=[[0,0,0],[1,0,0],[0,1,0],[0,0,1]];"
+              "exports.cells=[[0,1,2],[0,2,3]];")
+        p = self.dir / "t.ply"
+        fetch.teapot_js_to_ply(js, p)
+        self.assertEqual(fetch.count_plain(p), 2)
+        self.assertEqual(p.stat().st_size,
+                         len(p.read_bytes().split(b"end_header\n")[0]) + 11 + 4 * 12 + 2 * 13)
+
+    def test_ascii_ply(self):
+        p = self.write("a.ply", b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                b"property float y\nproperty float z\nelement face 1\n"
+                                b"property list uchar int vertex_indices\nend_header\n"
+                                b"0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+        self.assertEqual(fetch.count_plain(p), 1)
+
+
+if __name__ == "__main__":
+    unittest.main()
