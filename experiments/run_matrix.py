@@ -14,6 +14,13 @@ Raw results are append-only: nothing is ever rewritten.
 Resumable: a (scene, variant, repeats, threads, embree) already recorded with
 "ok": true is not run again (--force runs it again; the analysis keeps the
 newest record). Images go to OUT/images/<scene>_<variant>.png.
+With --backend slurm the pending jobs go to a SLURM cluster as one
+`sbatch --array` (task i runs job i of OUT/slurm/<stamp>/jobs.json, and
+writes its record to parts/i.json). The command waits for the array, then
+appends the records in job order, so the results file has the same records
+as a local run. A task without a record is reported with its log. Scene data
+must be fetched before (tasks never download): reproduce.sh does that.
+
 Standard library only (tqdm for the progress bar and ETA when present).
 """
 
@@ -21,6 +28,7 @@ import argparse
 import json
 import os
 import shutil
+import socket
 import subprocess
 import sys
 import tempfile
@@ -87,6 +95,16 @@ def kdrt_command(kdrt, scene, variant, settings, out_dir):
     return cmd
 
 
+def node_info():
+    """Where a record was measured: host and, under SLURM, job and task."""
+    info = {"host": socket.gethostname()}
+    for var in ("SLURM_JOB_ID", "SLURM_ARRAY_JOB_ID", "SLURM_ARRAY_TASK_ID",
+                "SLURMD_NODENAME"):
+        if os.environ.get(var):
+            info[var.lower()] = os.environ[var]
+    return info
+
+
 def run_job(kdrt, scene, variant, settings, out, profile):
     """Runs kdrt for one job; returns the record to append."""
     tmp = tempfile.mkdtemp(prefix="kdrt-", dir=out)
@@ -108,7 +126,7 @@ def run_job(kdrt, scene, variant, settings, out, profile):
                     "command": cmd, "error": proc.stderr[-2000:]}
         rec = lines[-1]
         rec.update({"ok": True, "job": job_key(scene, variant, settings),
-                    "profile": profile, "wall_s": wall})
+                    "profile": profile, "wall_s": wall, "node": node_info()})
         images = os.path.join(out, "images")
         os.makedirs(images, exist_ok=True)
         for name in os.listdir(tmp):
@@ -118,6 +136,99 @@ def run_job(kdrt, scene, variant, settings, out, profile):
         return rec
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
+
+
+def append_record(results_path, rec):
+    with open(results_path, "a", encoding="utf-8") as f:
+        f.write(json.dumps(rec) + "\n")
+        f.flush()
+        os.fsync(f.fileno())
+
+
+def run_task(jobs_file, index, kdrt, out):
+    """One SLURM array task: job `index` of jobs_file; the record goes to
+    parts/<index>.json beside it (written atomically), never to the shared
+    results file (the driver merges the parts in order)."""
+    with open(jobs_file, encoding="utf-8") as f:
+        spec = json.load(f)
+    job = spec["jobs"][index]
+    rec = run_job(kdrt, job["scene"], job["variant"], spec["settings"], out,
+                  spec["profile"])
+    parts = os.path.join(os.path.dirname(jobs_file), "parts")
+    os.makedirs(parts, exist_ok=True)
+    tmp = os.path.join(parts, "%d.json.tmp" % index)
+    with open(tmp, "w", encoding="utf-8") as f:
+        json.dump(rec, f)
+    os.rename(tmp, os.path.join(parts, "%d.json" % index))
+    return 0 if rec["ok"] else 1
+
+
+def run_slurm(pending, settings, args, results_path):
+    """Submits the pending jobs as one `sbatch --array`, waits for it, and
+    appends every task's record (or a failure naming its log) in job order.
+    Returns the number of failed tasks."""
+    stamp = time.strftime("%Y%m%d-%H%M%S")
+    work = os.path.abspath(os.path.join(args.out, "slurm", stamp))
+    os.makedirs(os.path.join(work, "logs"), exist_ok=True)
+    jobs_file = os.path.join(work, "jobs.json")
+    with open(jobs_file, "w", encoding="utf-8") as f:
+        json.dump({"profile": args.profile, "settings": settings,
+                   "jobs": [{"scene": s, "variant": v} for s, _, v in pending]},
+                  f, indent=1)
+    script = os.path.join(work, "task.sh")
+    with open(script, "w", encoding="utf-8") as f:
+        f.write("#!/bin/bash\n# One (scene, variant) of %s per array task.\n"
+                "exec /usr/bin/python3 %s --task %s --task_index "
+                "\"$SLURM_ARRAY_TASK_ID\" --kdrt %s --out %s\n"
+                % (jobs_file, os.path.abspath(__file__), jobs_file,
+                   os.path.abspath(args.kdrt), os.path.abspath(args.out)))
+    os.chmod(script, 0o755)
+    array = "0-%d" % (len(pending) - 1)
+    if args.max_parallel:
+        array += "%%%d" % args.max_parallel
+    cmd = ["sbatch", "--parsable", "--wait", "--array=" + array,
+           "--job-name=kdtree-" + args.profile,
+           "--output=" + os.path.join(work, "logs", "%A_%a.out"),
+           "--cpus-per-task=%d" % max(1, int(settings["threads"])),
+           "--chdir=" + ROOT]
+    for flag, value in (("--partition", args.partition), ("--time", args.time),
+                        ("--mem", args.mem)):
+        if value:
+            cmd.append("%s=%s" % (flag, value))
+    cmd.append(script)
+    print("run_matrix: %s" % " ".join(cmd), file=sys.stderr)
+    start = time.time()
+    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          text=True)
+    job_id = proc.stdout.strip().split(";")[0]
+    print("run_matrix: array job %s finished in %.1f s (sbatch exit %d)"
+          % (job_id or "?", time.time() - start, proc.returncode),
+          file=sys.stderr)
+    if not job_id:
+        raise RuntimeError("sbatch failed: %s" % proc.stderr.strip())
+    failures = 0
+    for i, (scene, _, variant) in enumerate(pending):
+        part = os.path.join(work, "parts", "%d.json" % i)
+        log = os.path.join(work, "logs", "%s_%d.out" % (job_id, i))
+        if os.path.exists(part):
+            with open(part, encoding="utf-8") as f:
+                rec = json.load(f)
+        else:
+            tail = ""
+            if os.path.exists(log):
+                with open(log, encoding="utf-8", errors="replace") as f:
+                    tail = f.read()[-2000:]
+            rec = {"ok": False, "job": job_key(scene, variant, settings),
+                   "scene": scene, "preset": variant, "profile": args.profile,
+                   "returncode": None, "error": "no record from SLURM task "
+                   "%s_%d; log %s:\n%s" % (job_id, i, log, tail)}
+        rec["backend"] = "slurm"
+        append_record(results_path, rec)
+        if not rec["ok"]:
+            failures += 1
+            print("run_matrix: task %s_%d (%s/%s) failed; log: %s"
+                  % (job_id, i, scene, variant, log), file=sys.stderr)
+    return failures
 
 
 def main(argv=None):
@@ -133,7 +244,20 @@ def main(argv=None):
     p.add_argument("--repeats", type=int, help="override the profile's")
     p.add_argument("--embree", help="override the profile's (off|low|medium|high)")
     p.add_argument("--force", action="store_true")
+    p.add_argument("--backend", choices=["local", "slurm"], default="local",
+                   help="local: one job after another here; slurm: one "
+                   "sbatch --array over the pending jobs")
+    p.add_argument("--partition", help="SLURM partition (default: the "
+                   "cluster's default)")
+    p.add_argument("--time", default="02:00:00", help="SLURM time limit per task")
+    p.add_argument("--mem", default="16G", help="SLURM memory per task")
+    p.add_argument("--max_parallel", type=int, default=0,
+                   help="SLURM tasks at once (0: no limit)")
+    p.add_argument("--task", help=argparse.SUPPRESS)  # jobs.json of an array
+    p.add_argument("--task_index", type=int, help=argparse.SUPPRESS)
     args = p.parse_args(argv)
+    if args.task:
+        return run_task(args.task, args.task_index, args.kdrt, args.out)
 
     matrix = load_matrix()
     if args.profile not in matrix["profiles"]:
@@ -165,6 +289,13 @@ def main(argv=None):
     print("run_matrix: profile %s: %d jobs, %d already done, %d to run"
           % (args.profile, len(jobs), len(jobs) - len(pending), len(pending)),
           file=sys.stderr)
+    if args.backend == "slurm":
+        if not pending:
+            return 0
+        failures = run_slurm(pending, settings, args, results_path)
+        print("run_matrix: %d SLURM tasks, %d failed" % (len(pending), failures),
+              file=sys.stderr)
+        return 0
     bar = _tqdm(total=len(pending), unit="run", file=sys.stderr) if _tqdm \
         else None
     failures = 0
@@ -173,10 +304,8 @@ def main(argv=None):
             bar.set_description("%s/%s" % (scene, variant))
         rec = run_job(args.kdrt, scene, variant, settings, args.out,
                       args.profile)
-        with open(results_path, "a", encoding="utf-8") as f:
-            f.write(json.dumps(rec) + "\n")
-            f.flush()
-            os.fsync(f.fileno())
+        rec["backend"] = "local"
+        append_record(results_path, rec)
         if not rec["ok"]:
             failures += 1
             print("run_matrix: %s/%s failed (exit %s): %s"

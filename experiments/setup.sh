@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Idempotent set-up: installs exactly the Debian packages this project needs.
 # Does nothing (no apt-get at all) when every package is already installed.
-# Usage: tools/setup.sh [--with-report] [--with-blender]
+# Usage: experiments/setup.sh [--with-report] [--with-blender] [--with-slurm]
 #   default          : build + test dependencies (Bazel, Abseil, GoogleTest, ...)
 #   --with-report    : also LaTeX for the report PDF
 #   --with-blender   : also Blender (generates the report's scene 18, Suzanne)
+#   --with-slurm     : also SLURM and munge (a one-node cluster for the runner's test)
 set -euo pipefail
 
 PKGS=(
@@ -25,6 +26,7 @@ for a in "$@"; do
   case "$a" in
     --with-report) PKGS+=(texlive-latex-recommended texlive-fonts-recommended texlive-latex-extra latexmk lmodern poppler-utils) ;;
     --with-blender) PKGS+=(blender) ;;
+    --with-slurm) PKGS+=(slurm-wlm munge) ;;
     *) echo "setup.sh: unknown option '$a'" >&2; exit 2 ;;
   esac
 done

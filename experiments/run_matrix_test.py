@@ -1,0 +1,121 @@
+"""run_matrix.py and compare_results.py with a fake kdrt (a script that
+writes a record the way kdrt does), locally and in SLURM task mode."""
+
+import json
+import os
+import stat
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+import compare_results  # noqa: E402
+import run_matrix  # noqa: E402
+
+FAKE_KDRT = """#!/usr/bin/python3
+import json, sys, time
+args = dict(zip(sys.argv[1::2], sys.argv[2::2]))
+if args["--scene"] == "broken":
+    print("kdrt: cannot load scene", file=sys.stderr)
+    sys.exit(1)
+rec = {"scene": args["--scene"], "preset": args["--preset"],
+       "T_B": time.time() % 1, "T_R": 0.5, "N_IT": 3.0,
+       "tree": {"N_I": len(args["--preset"]), "N_L": 7}, "P_hit": 10}
+with open(args["--out"] + "/results.jsonl", "a") as f:
+    f.write(json.dumps(rec) + "\\n")
+open(args["--out"] + "/%s_%s.png" % (args["--scene"], args["--preset"]), "w").write("png")
+"""
+
+
+class RunMatrixTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        d = self.tmp.name
+        self.kdrt = os.path.join(d, "kdrt")
+        with open(self.kdrt, "w") as f:
+            f.write(FAKE_KDRT)
+        os.chmod(self.kdrt, os.stat(self.kdrt).st_mode | stat.S_IEXEC)
+        self.manifest = os.path.join(d, "manifest.json")
+        with open(self.manifest, "w") as f:
+            json.dump({"scenes": [
+                {"name": "a", "profiles": ["test"]},
+                {"name": "broken", "profiles": ["test"]},
+                {"name": "b", "profiles": ["quick"]}]}, f)
+        self.index = os.path.join(d, "index.json")
+        with open(self.index, "w") as f:
+            json.dump({"a": os.path.join(d, "a.obj"),
+                       "broken": os.path.join(d, "x.obj"),
+                       "b": os.path.join(d, "b.obj")}, f)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def run_matrix(self, out, *extra):
+        return run_matrix.main([
+            "--profile", "test", "--kdrt", self.kdrt, "--out", out,
+            "--manifest", self.manifest, "--index", self.index,
+            "--variants", "median-16-2,clipping"] + list(extra))
+
+    def records(self, out):
+        with open(os.path.join(out, "results", "kdtree.jsonl")) as f:
+            return [json.loads(line) for line in f]
+
+    def test_runs_the_profile_records_failures_and_resumes(self):
+        out = os.path.join(self.tmp.name, "out")
+        self.assertEqual(self.run_matrix(out), 0)
+        recs = self.records(out)
+        self.assertEqual([(r["scene"], r["preset"], r["ok"]) for r in recs], [
+            ("a", "median-16-2", True), ("a", "clipping", True),
+            ("broken", "median-16-2", False), ("broken", "clipping", False)])
+        self.assertIn("cannot load scene", recs[2]["error"])
+        self.assertEqual(recs[0]["profile"], "test")
+        self.assertEqual(recs[0]["backend"], "local")
+        self.assertTrue(os.path.exists(
+            os.path.join(out, "images", "a_clipping.png")))
+        # Resumed: only the failed jobs run again.
+        self.assertEqual(self.run_matrix(out), 0)
+        self.assertEqual(len(self.records(out)), 6)
+
+    def test_task_mode_writes_a_part_per_index(self):
+        out = os.path.join(self.tmp.name, "out")
+        os.makedirs(out)
+        jobs = os.path.join(self.tmp.name, "jobs.json")
+        with open(jobs, "w") as f:
+            json.dump({"profile": "test",
+                       "settings": {"repeats": 1, "threads": 1, "embree": "off"},
+                       "jobs": [{"scene": "a", "variant": "pruning"}]}, f)
+        self.assertEqual(run_matrix.main(["--task", jobs, "--task_index", "0",
+                                          "--kdrt", self.kdrt, "--out", out]), 0)
+        with open(os.path.join(self.tmp.name, "parts", "0.json")) as f:
+            rec = json.load(f)
+        self.assertEqual((rec["scene"], rec["preset"], rec["ok"]),
+                         ("a", "pruning", True))
+        self.assertEqual(rec["job"], ["a", "pruning", 1, 1, "off"])
+
+    def test_compare_ignores_timings_but_not_statistics(self):
+        a = os.path.join(self.tmp.name, "a")
+        b = os.path.join(self.tmp.name, "b")
+        self.run_matrix(a)
+        self.run_matrix(b)
+        diffs, common = compare_results.compare(
+            os.path.join(a, "results", "kdtree.jsonl"),
+            os.path.join(b, "results", "kdtree.jsonl"))
+        self.assertEqual(diffs, [])  # T_B differs (time-based), ignored
+        self.assertEqual(common, 2)
+        path = os.path.join(b, "results", "kdtree.jsonl")
+        recs = self.records(b)
+        recs[0]["tree"]["N_I"] = 999
+        with open(path, "w") as f:
+            for r in recs:
+                f.write(json.dumps(r) + "\n")
+        diffs, _ = compare_results.compare(
+            os.path.join(a, "results", "kdtree.jsonl"), path)
+        self.assertEqual(len(diffs), 1)
+        self.assertIn("tree.N_I", diffs[0])
+
+
+if __name__ == "__main__":
+    unittest.main()
