@@ -103,6 +103,17 @@ class KdtreeAnalysisTest(unittest.TestCase):
         self.assertEqual(macros["ClaimsTotal"][0], str(len(claims.CLAIMS)))
         self.assertIn("confirmed", self.read("claims.tex"))
 
+    def test_timings_from_two_cpus_are_refused_unless_allowed(self):
+        path = os.path.join(self.ctx.results_dir, kr.KDTREE_FILE)
+        with open(path, "a") as f:
+            f.write(json.dumps(record("alpha", "binning-8", cpu="CPU A")) + "\n")
+            f.write(json.dumps(record("beta", "binning-8", cpu="CPU B")) + "\n")
+        with self.assertRaises(kr.MixedCpuError):
+            kdtree_tables.generate(self.ctx)
+        self.ctx.allow_mixed_cpus = True
+        macros = kdtree_tables.generate(self.ctx)
+        self.assertEqual(macros["KdCpus"][0], "CPU A; CPU B")
+
     def test_figures_are_written(self):
         kdtree_figures.generate(self.ctx)
         for name in ("fig1_build.pdf", "fig2_render.pdf"):

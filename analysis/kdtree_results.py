@@ -41,6 +41,7 @@ FIELDS = {
     "embree_T_B": ["embree.T_B"], "embree_T_R": ["embree.T_R"],
     "embree_perf": ["embree.perf_krays", "embree.perf"],
     "embree_disagree": ["embree.disagreements", "embree.disagree"],
+    "cpu": ["cpu", "machine.cpu", "cpu_model"],
 }
 
 
@@ -84,6 +85,22 @@ def frame(records, manifest):
                                      "report_scene"] + list(FIELDS))
     df = pd.DataFrame(rows).sort_values(["order", "scene"])
     return df.set_index(["scene", "variant"])
+
+
+class MixedCpuError(ValueError):
+    """Timings measured on different CPUs would share one table."""
+
+
+def check_one_cpu(df, allow_mixed=False):
+    """Raises MixedCpuError when the runs come from more than one CPU model
+    (a cluster with mixed nodes), unless allowed; returns the CPU models."""
+    cpus = sorted({c for c in df["cpu"].tolist() if c}) if not df.empty else []
+    if len(cpus) > 1 and not allow_mixed:
+        raise MixedCpuError(
+            "timings from %d different CPUs (%s) would be mixed in one table; "
+            "rerun on one kind of node, or pass --allow_mixed_cpus"
+            % (len(cpus), "; ".join(cpus)))
+    return cpus
 
 
 def scenes_in_order(df):

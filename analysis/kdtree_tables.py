@@ -71,6 +71,7 @@ def render(df, scenes, variants, columns, caption, label):
 
 def generate(ctx):
     df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
+    cpus = kr.check_one_cpu(df, getattr(ctx, "allow_mixed_cpus", False))
     scenes = kr.scenes_in_order(df)
     for first, columns, stem in SETS:
         for k, variants in enumerate(kr.GROUPS):
@@ -81,7 +82,8 @@ def generate(ctx):
                       render(df, scenes, variants, columns, caption,
                              "tab:t%d" % number))
     ctx.write("table1_rays.tex", render_rays(df, scenes))
-    return {"NumKdScenes": (str(len(scenes)), False),
+    return {"KdCpus": (latex.escape("; ".join(cpus)) or latex.DASH, True),
+            "NumKdScenes": (str(len(scenes)), False),
             "NumKdRuns": (str(len(df)), False)}
 
 

@@ -50,7 +50,8 @@ GENERATORS = [
 MARKER = ".generated-by-analysis"
 
 
-def make_all(results_dir, manifest_path, out_dir, generators=None):
+def make_all(results_dir, manifest_path, out_dir, generators=None,
+             allow_mixed_cpus=False):
     """Runs every generator into a fresh out_dir; returns the files written."""
     generators = GENERATORS if generators is None else generators
     out_dir = os.path.abspath(out_dir)
@@ -64,6 +65,7 @@ def make_all(results_dir, manifest_path, out_dir, generators=None):
     os.makedirs(staging)
     try:
         ctx = context.Context(results_dir, manifest_path, staging)
+        ctx.allow_mixed_cpus = allow_mixed_cpus
         macros = {}
         for gen in generators:
             for name, value in gen.generate(ctx).items():
@@ -91,9 +93,12 @@ def main(argv=None):
                         help="directory of raw results (scenes.jsonl, ...)")
     parser.add_argument("--manifest", default="data/manifest.json")
     parser.add_argument("--out", default="report/generated")
+    parser.add_argument("--allow_mixed_cpus", action="store_true",
+                        help="put timings from different CPUs in one table")
     args = parser.parse_args(argv)
     try:
-        written = make_all(args.results, args.manifest, args.out)
+        written = make_all(args.results, args.manifest, args.out,
+                           allow_mixed_cpus=args.allow_mixed_cpus)
     except (RuntimeError, ValueError, OSError) as e:
         print("make_all: error: %s" % e, file=sys.stderr)
         return 1

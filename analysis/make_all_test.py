@@ -16,7 +16,7 @@ EXPECTED_MACROS = [
     "LargestScene", "LargestSceneTriangles", "NumReportScenesCovered",
     "NumReportScenes", "Profile",
 ] + row18.MACROS + [
-    "NumKdScenes", "NumKdRuns", "ClaimsTotal", "ClaimsConfirmed",
+    "KdCpus", "NumKdScenes", "NumKdRuns", "ClaimsTotal", "ClaimsConfirmed",
     "ClaimsRefuted", "ClaimsMixed"]
 
 
