@@ -11,6 +11,10 @@ the simple loaders, for .ply/.obj/.off) can read. Sources, by manifest `kind`:
              update` is tried once if it fails and we are root), kept in
              data/cache/debs/, then the file is taken out of the .deb (and out
              of `member` of an archive inside it: .tar.gz or .zip/.pk3).
+             `convert: stk-track`: `path` is a SuperTuxKart track's scene.xml;
+             the package's meshes and XML files (not its textures or sounds)
+             are taken out once into data/cache/extracted/, and
+             //cc/scenes:stk_track places the track's .spm meshes into a PLY.
   npm        npm tarball: `npm pack`, kept in data/cache/npm/; .gz members are
              decompressed; `convert: teapot-js` turns positions/cells into PLY.
   blender    Blender headless (Suzanne, the report's scene 18), exported as OBJ.
@@ -230,7 +234,7 @@ def count_plain(path):
 
 
 class Tools:
-    """The C++ tools (//cc/scenes:generate, :mesh_info), built on first use."""
+    """The C++ tools (//cc/scenes:generate, :mesh_info, :stk_track), built on first use."""
 
     def __init__(self, mode):
         self.mode = mode
@@ -239,10 +243,12 @@ class Tools:
 
     def ensure(self):
         if self.bin is None and self.error is None:
-            log(f"building //cc/scenes:generate and :mesh_info (bazel -c {self.mode}) ...")
+            log(f"building //cc/scenes:generate, :mesh_info and :stk_track "
+                f"(bazel -c {self.mode}) ...")
             try:
                 run(["bazel", "build", "-c", self.mode, "//cc/scenes:generate",
-                     "//cc/scenes:mesh_info"], cwd=REPO, what="bazel build")
+                     "//cc/scenes:mesh_info", "//cc/scenes:stk_track"], cwd=REPO,
+                    what="bazel build")
                 out = run(["bazel", "info", "-c", self.mode, "bazel-bin"], cwd=REPO,
                           what="bazel info")
                 self.bin = Path(out.strip().splitlines()[-1]) / "cc" / "scenes"
@@ -280,6 +286,7 @@ def ensure_deb(package, stats):
     if found:
         return found[-1]
     tmp = Path(tempfile.mkdtemp(prefix=f"apt-{package}-", dir=TMP))
+    log(f"apt-get download {package} into {DEBS.relative_to(REPO)}/ ...")
     try:
         try:
             run(["apt-get", "download", package], cwd=tmp, what=f"apt-get download {package}")
@@ -343,9 +350,69 @@ def extract_member(archive, member, dest):
     raise SceneError(f"{member} is not in {archive.name}")
 
 
-def fetch_package(entry, dest, stats):
+# SuperTuxKart's data in supertuxkart-data; only these files are taken out.
+STK_DATA = "usr/share/games/supertuxkart/data/"
+STK_SUFFIXES = (".spm", ".xml")
+
+
+def extract_tree_from_deb(deb, prefix, suffixes, root):
+    """Takes every file under ./prefix ending with one of suffixes out of the
+    .deb into root (same relative paths), once: root/.complete names the .deb."""
+    marker = root / ".complete"
+    if marker.exists() and marker.read_text().strip() == deb.name:
+        return
+    log(f"taking {prefix}*{{{','.join(suffixes)}}} out of {deb.name} into "
+        f"{root.relative_to(REPO)}/ ...")
+    proc = subprocess.Popen(["dpkg-deb", "--fsys-tarfile", str(deb)], stdout=subprocess.PIPE)
+    count = 0
+    try:
+        with tarfile.open(fileobj=proc.stdout, mode="r|") as tar, \
+                tqdm(unit="file", desc="extract", leave=False, file=sys.stderr,
+                     disable=None) as bar:
+            for member in tar:
+                name = member.name[2:] if member.name.startswith("./") else member.name
+                if not (member.isfile() and name.startswith(prefix)
+                        and name.endswith(suffixes)) or ".." in name.split("/"):
+                    continue
+                out = root / name
+                out.parent.mkdir(parents=True, exist_ok=True)
+                with tar.extractfile(member) as src, open(out, "wb") as dst:
+                    shutil.copyfileobj(src, dst, 1 << 20)
+                count += 1
+                bar.update(1)
+    finally:
+        proc.stdout.close()
+        returncode = proc.wait()
+    if returncode != 0:
+        raise SceneError(f"dpkg-deb --fsys-tarfile {deb.name} failed (exit {returncode})")
+    if count == 0:
+        raise SceneError(f"no {prefix}* files in {deb.name}")
+    marker.write_text(deb.name + "\n")
+    log(f"  {count} files taken out")
+
+
+def fetch_stk_track(entry, deb, dest, tools):
+    """A SuperTuxKart track (entry path: its scene.xml) as one PLY."""
+    if not entry["path"].startswith(STK_DATA) or not entry["path"].endswith("/scene.xml"):
+        raise SceneError(f"stk-track: path must be {STK_DATA}tracks/NAME/scene.xml")
+    root = EXTRACTED / entry["package"]
+    extract_tree_from_deb(deb, STK_DATA, STK_SUFFIXES, root)
+    track_dir = root / entry["path"].rsplit("/", 1)[0]
+    if not (track_dir / "scene.xml").exists():
+        raise SceneError(f"{entry['path']} is not in {deb.name}")
+    out = run([str(tools.ensure() / "stk_track"), f"--track_dir={track_dir}",
+               f"--out={dest}"], what="stk_track")
+    info = json.loads(out.strip().splitlines()[-1])
+    log(f"  stk_track: {info['placed']} meshes placed ({info['lod_instances']} LOD instances, "
+        f"{info['libraries']} library nodes), skipped {info['skipped']}")
+
+
+def fetch_package(entry, dest, stats, tools):
     deb = ensure_deb(entry["package"], stats)
     stats["source_bytes"] = deb.stat().st_size
+    if entry.get("convert") == "stk-track":
+        fetch_stk_track(entry, deb, dest, tools)
+        return
     if not entry.get("member"):
         extract_from_deb(deb, entry["path"], dest)
         return
@@ -529,7 +596,7 @@ def obtain(entry, tools, index, cache_paths, force=False):
     kind = entry["kind"]
     try:
         if kind == "package":
-            fetch_package(entry, part, stats)
+            fetch_package(entry, part, stats, tools)
         elif kind == "npm":
             fetch_npm(entry, part, stats)
         elif kind == "blender":

@@ -32,6 +32,8 @@ FIELDS = {
     "light", "notes",
 }
 FORMATS = {"obj", "ply", "off", "blend", "glb", "ac"}
+# Conversions fetch.py applies (None: the file is used as packaged).
+CONVERTS = {None, "teapot-js", "stk-track"}
 
 
 def is_vec3(v):
@@ -141,13 +143,22 @@ class ManifestTest(unittest.TestCase):
         for s in self.scenes:
             with self.subTest(scene=s["name"]):
                 k = s["kind"]
+                self.assertIn(s["convert"], CONVERTS)
                 if k == "package":
                     self.assertRegex(s["package"], debian_name)
                     self.assertTrue(s["path"] and not s["path"].startswith("/"))
                     if s["member"]:
                         self.assertTrue(s["path"].endswith((".tar.gz", ".zip", ".pk3")))
-                    target = s["member"] or s["path"]
-                    self.assertEqual(target.rsplit(".", 1)[-1].lower(), s["format"])
+                    if s["convert"] == "stk-track":  # a track's scene.xml -> PLY
+                        self.assertEqual(s["package"], "supertuxkart-data")
+                        self.assertRegex(s["path"], r"^" + re.escape(fetch.STK_DATA)
+                                         + r"tracks/[a-z0-9_]+/scene\.xml$")
+                        self.assertIsNone(s["member"])
+                        self.assertEqual(s["format"], "ply")
+                    else:
+                        self.assertIsNone(s["convert"])
+                        target = s["member"] or s["path"]
+                        self.assertEqual(target.rsplit(".", 1)[-1].lower(), s["format"])
                     self.assertIn(s["package"], s["licence"])  # read from its copyright file
                 elif k == "npm":
                     self.assertTrue(s["package"] and s["npm_version"])
@@ -178,8 +189,12 @@ class ManifestTest(unittest.TestCase):
 
     def test_big_packages_only_in_full(self):
         for s in self.scenes:
-            if s["package"] in ("flightgear-data-base", "supertuxkart-data", "nexuiz-data"):
+            if s["package"] in ("flightgear-data-base", "nexuiz-data"):
                 self.assertEqual(s["profiles"], ["full"], s["name"])
+            # SuperTuxKart (628 MB) holds the real forest, city, interior and plants
+            # tracks: standard and full, never quick or test.
+            if s["package"] == "supertuxkart-data":
+                self.assertEqual(s["profiles"], ["standard", "full"], s["name"])
             if s["kind"] == "url":
                 self.assertEqual(s["profiles"], ["full"], s["name"])
 
