@@ -1,0 +1,66 @@
+// Embree 3 as a Tracer: the baseline a kd-tree is compared against.
+//
+// Wald, Woop, Benthin, Johnson, Ernst, "Embree: a kernel framework for
+// efficient CPU ray tracing", ACM TOG 33(4), 2014. Same triangle soup as the
+// kd-tree (one RTC_GEOMETRY_TYPE_TRIANGLE geometry, triangle i = vertices 3i,
+// 3i+1, 3i+2, so primID is our triangle index), rtcIntersect1 for closest hit
+// and rtcOccluded1 for any hit, default scene flags (not ROBUST, no filters).
+// Hit::u, v are Embree's barycentrics, the same convention as ours (hit point
+// = (1 - u - v) a + u b + v c). Embree reports hits with tnear <= t <= tfar.
+//
+// Build time is the time of rtcCommitScene only (device, scene and buffer
+// creation excluded). `threads` is passed to rtcNewDevice ("threads=1" for
+// the single-thread comparison), which also bounds Embree's build.
+#ifndef KDTREE_CC_EMBREE_EMBREE_TRACER_H_
+#define KDTREE_CC_EMBREE_EMBREE_TRACER_H_
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "cc/geometry/triangle.h"
+#include "cc/render/tracer.h"
+
+namespace kdtree {
+
+enum class EmbreeQuality { kLow, kMedium, kHigh };
+
+// "low", "medium", "high" (any case) -> quality; InvalidArgument otherwise.
+absl::StatusOr<EmbreeQuality> ParseEmbreeQuality(const std::string& name);
+const char* EmbreeQualityName(EmbreeQuality q);  // "low", "medium", "high"
+
+struct EmbreeOptions {
+  // RTC_BUILD_QUALITY_LOW / MEDIUM (Embree's default) / HIGH (spatial splits).
+  EmbreeQuality quality = EmbreeQuality::kMedium;
+  // Threads of the Embree device (rtcNewDevice "threads=N").
+  int threads = 1;
+};
+
+class EmbreeTracer : public Tracer {
+ public:
+  // Builds the scene. Errors: empty soup, Embree device or build errors.
+  static absl::StatusOr<std::unique_ptr<EmbreeTracer>> Create(const TriangleSoup& soup,
+                                                              const EmbreeOptions& options);
+  ~EmbreeTracer() override;
+  EmbreeTracer(const EmbreeTracer&) = delete;
+  EmbreeTracer& operator=(const EmbreeTracer&) = delete;
+
+  std::string name() const override { return "embree"; }
+  Hit Intersect(const Ray& ray) const override;
+  bool Occluded(const Ray& ray) const override;
+
+  // Wall time of rtcCommitScene.
+  double build_seconds() const { return build_seconds_; }
+
+ private:
+  EmbreeTracer() = default;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  double build_seconds_ = 0;
+};
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_EMBREE_EMBREE_TRACER_H_

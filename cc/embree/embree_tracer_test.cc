@@ -1,0 +1,83 @@
+#include "cc/embree/embree_tracer.h"
+
+#include <vector>
+
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/test_scenes.h"
+#include "cc/render/compare.h"
+#include "cc/render/kdtree_tracer.h"
+#include "cc/render/renderer.h"
+#include "cc/render/test_scene.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+TEST(EmbreeTracer, AgreesWithBruteForceOnRenderedRaysExceptGrazing) {
+  for (const EmbreeQuality q : {EmbreeQuality::kLow, EmbreeQuality::kMedium, EmbreeQuality::kHigh}) {
+    for (const float scale : {1e-3f, 1.0f, 1e3f}) {
+      const TriangleSoup soup = testing::SphereOnGround(scale);
+      const BruteForce bf(soup);
+      const BruteForceTracer brute(bf);
+      EmbreeOptions opt;
+      opt.quality = q;
+      absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, opt);
+      ASSERT_TRUE(embree.ok()) << embree.status();
+      EXPECT_GE((*embree)->build_seconds(), 0.0);
+      View view = testing::SphereView(64, 64, scale);
+      view.ao.samples = 2;
+      view.ao.distance = 0.4f * scale;
+      RenderOptions ro;
+      ro.record_rays = true;
+      const RenderResult ref = Render(soup, brute, view, ro);
+      ASSERT_GT(ref.shadow.rays, 0u);
+      const Disagreements d = CompareTracers(ref.rays, brute, **embree);
+      EXPECT_EQ(d.all.other(), 0u) << EmbreeQualityName(q) << " scale " << scale << ": "
+                                   << d.ToJson() << (d.examples.empty() ? "" : d.examples[0]);
+      EXPECT_LE(d.all.total(), ref.rays.size() / 1000);
+      // Embree's own render sees (nearly) the same picture.
+      const RenderResult own = Render(soup, **embree, view, RenderOptions());
+      EXPECT_NEAR(static_cast<double>(own.p_hit), static_cast<double>(ref.p_hit), 3.0);
+      EXPECT_NEAR(static_cast<double>(own.s_hit), static_cast<double>(ref.s_hit), 3.0);
+    }
+  }
+}
+
+TEST(EmbreeTracer, AgreesWithBruteForceOnRandomRays) {
+  const TriangleSoup soup = testing::BumpySphere(3, 9);
+  const BruteForce bf(soup);
+  absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, EmbreeOptions());
+  ASSERT_TRUE(embree.ok()) << embree.status();
+  int hits = 0, grazing_only = 0;
+  for (const Ray& ray : testing::RandomRays(soup, 20000, 3)) {
+    const Hit a = bf.Intersect(ray);
+    const Hit b = (*embree)->Intersect(ray);
+    hits += a.hit();
+    const bool same = a.hit() == b.hit() && (!a.hit() || std::fabs(a.t - b.t) <= 1e-4f * std::fmax(a.t, b.t));
+    if (same) {
+      if (a.hit()) {
+        EXPECT_EQ(a.tri, b.tri);
+      }
+      EXPECT_EQ(bf.Occluded(ray), (*embree)->Occluded(ray));
+      continue;
+    }
+    EXPECT_TRUE(NearEdge(a) || NearEdge(b)) << "t " << a.t << " vs " << b.t;
+    ++grazing_only;
+  }
+  EXPECT_GT(hits, 5000);
+  EXPECT_LT(grazing_only, 10);
+}
+
+TEST(EmbreeTracer, QualityNames) {
+  EXPECT_EQ(*ParseEmbreeQuality("HIGH"), EmbreeQuality::kHigh);
+  EXPECT_EQ(*ParseEmbreeQuality("low"), EmbreeQuality::kLow);
+  EXPECT_FALSE(ParseEmbreeQuality("ultra").ok());
+  EXPECT_STREQ(EmbreeQualityName(EmbreeQuality::kMedium), "medium");
+}
+
+TEST(EmbreeTracer, EmptySoupIsAnError) {
+  EXPECT_FALSE(EmbreeTracer::Create(TriangleSoup(), EmbreeOptions()).ok());
+}
+
+}  // namespace
+}  // namespace kdtree

@@ -1,0 +1,11 @@
+#include "cc/render/kdtree_tracer.h"
+
+#include "cc/kdtree/traversal.h"
+
+namespace kdtree {
+
+Hit KdTreeTracer::Intersect(const Ray& ray) const { return ::kdtree::Intersect(tree_, ray); }
+
+bool KdTreeTracer::Occluded(const Ray& ray) const { return ::kdtree::Occluded(tree_, ray); }
+
+}  // namespace kdtree

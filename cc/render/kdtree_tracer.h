@@ -1,0 +1,40 @@
+// Tracer adapters for the kd-tree (non-counting fast path of
+// cc/kdtree/traversal.h) and for the brute-force reference.
+#ifndef KDTREE_CC_RENDER_KDTREE_TRACER_H_
+#define KDTREE_CC_RENDER_KDTREE_TRACER_H_
+
+#include <string>
+
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/tree.h"
+#include "cc/render/tracer.h"
+
+namespace kdtree {
+
+// Traces with the kd-tree's fast path (no counters). `tree` must outlive it.
+class KdTreeTracer : public Tracer {
+ public:
+  explicit KdTreeTracer(const KdTree& tree) : tree_(tree) {}
+  std::string name() const override { return "kdtree"; }
+  Hit Intersect(const Ray& ray) const override;
+  bool Occluded(const Ray& ray) const override;
+
+ private:
+  const KdTree& tree_;
+};
+
+// Every triangle tested (cc/kdtree/brute_force.h). `bf` must outlive it.
+class BruteForceTracer : public Tracer {
+ public:
+  explicit BruteForceTracer(const BruteForce& bf) : bf_(bf) {}
+  std::string name() const override { return "brute_force"; }
+  Hit Intersect(const Ray& ray) const override { return bf_.Intersect(ray); }
+  bool Occluded(const Ray& ray) const override { return bf_.Occluded(ray); }
+
+ private:
+  const BruteForce& bf_;
+};
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_RENDER_KDTREE_TRACER_H_

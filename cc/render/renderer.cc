@@ -1,0 +1,241 @@
+#include "cc/render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "cc/render/camera.h"
+#include "cc/render/secondary_rays.h"
+#include "oneapi/tbb/blocked_range.h"
+#include "oneapi/tbb/global_control.h"
+#include "oneapi/tbb/parallel_for.h"
+
+namespace kdtree {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// f(y0, y1) over the rows [0, height): inline for one thread, else in parallel.
+template <typename F>
+void ForRows(int height, int threads, const F& f) {
+  if (threads <= 1) {
+    f(0, height);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 1),
+                    [&](const tbb::blocked_range<int>& r) { f(r.begin(), r.end()); });
+}
+
+RayRecord MakeRecord(const Ray& r, RayKind kind, uint32_t pixel, uint16_t index) {
+  RayRecord rec;
+  rec.origin = r.origin;
+  rec.dir = r.dir;
+  rec.tmin = r.tmin;
+  rec.tmax = r.tmax;
+  rec.kind = kind;
+  rec.light = index;
+  rec.pixel = pixel;
+  return rec;
+}
+
+// Linear [0, 1] to gamma-1/2.2 bytes through a 4096-entry table (std::pow per
+// channel would cost ~10% of a fast render's T_R).
+uint8_t ToByte(float linear) {
+  static const std::vector<uint8_t>* table = [] {
+    auto* t = new std::vector<uint8_t>(4097);
+    for (int i = 0; i <= 4096; ++i) {
+      (*t)[i] = static_cast<uint8_t>(std::pow(i / 4096.0, 1.0 / 2.2) * 255.0 + 0.5);
+    }
+    return t;
+  }();
+  const float c = std::fmin(1.0f, std::fmax(0.0f, linear));
+  return (*table)[static_cast<int>(c * 4096.0f + 0.5f)];
+}
+
+uint64_t Sum(const std::vector<uint64_t>& v) {
+  uint64_t s = 0;
+  for (uint64_t x : v) s += x;
+  return s;
+}
+
+void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* out) {
+  for (auto& row : *rows) {
+    out->insert(out->end(), row.begin(), row.end());
+    std::vector<RayRecord>().swap(row);
+  }
+}
+
+}  // namespace
+
+RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& view,
+                    const RenderOptions& options) {
+  std::unique_ptr<tbb::global_control> cap;
+  if (options.threads > 1) {
+    cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                static_cast<size_t>(options.threads));
+  }
+  const int w = view.width, h = view.height, threads = options.threads;
+  const size_t pixels = static_cast<size_t>(w) * h;
+  const Camera camera(view.camera, w, h);
+  const int n_lights = static_cast<int>(view.lights.size());
+  const bool shadows = options.cast_shadow_rays && n_lights > 0;
+  const int ao_samples = view.ao.enabled() ? view.ao.samples : 0;
+  const bool record = options.record_rays;
+
+  RenderResult res;
+  res.width = w;
+  res.height = h;
+  res.primary_hits.resize(pixels);
+  std::vector<uint8_t> occluded(shadows ? pixels * n_lights : 0);
+  std::vector<uint16_t> ao_open(ao_samples > 0 ? pixels : 0);
+  std::vector<uint64_t> row_count(h);
+  std::vector<std::vector<RayRecord>> rows(record ? h : 0);
+  const Clock::time_point start = Clock::now();
+
+  // 1. Primary rays.
+  Clock::time_point t0 = Clock::now();
+  ForRows(h, threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      uint64_t hits = 0;
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        const Ray ray = camera.PrimaryRay(x, y);
+        const Hit hit = tracer.Intersect(ray);
+        res.primary_hits[p] = hit;
+        hits += hit.hit();
+        if (record) {
+          RayRecord rec = MakeRecord(ray, RayKind::kPrimary, static_cast<uint32_t>(p), 0);
+          rec.hit = hit.hit();
+          if (hit.hit()) {
+            rec.tri = hit.tri;
+            rec.t = hit.t;
+            rec.u = hit.u;
+            rec.v = hit.v;
+          }
+          rows[y].push_back(rec);
+        }
+      }
+      row_count[y] = hits;
+    }
+  });
+  res.primary.seconds = Seconds(t0);
+  res.primary.rays = pixels;
+  res.p_hit = Sum(row_count);
+  res.p_miss = pixels - res.p_hit;
+  if (record) Append(&rows, &res.rays);
+
+  // 2. Shadow rays: one per primary hit and light.
+  if (shadows) {
+    t0 = Clock::now();
+    ForRows(h, threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) {
+        uint64_t blocked = 0;
+        for (int x = 0; x < w; ++x) {
+          const size_t p = static_cast<size_t>(y) * w + x;
+          const Hit& hit = res.primary_hits[p];
+          if (!hit.hit()) continue;
+          const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
+          for (int l = 0; l < n_lights; ++l) {
+            const Ray ray = ShadowRay(sp, view.lights[l].position);
+            const bool occ = tracer.Occluded(ray);
+            occluded[p * n_lights + l] = occ;
+            blocked += occ;
+            if (record) {
+              RayRecord rec = MakeRecord(ray, RayKind::kShadow, static_cast<uint32_t>(p),
+                                         static_cast<uint16_t>(l));
+              rec.hit = occ;
+              rows[y].push_back(rec);
+            }
+          }
+        }
+        row_count[y] = blocked;
+      }
+    });
+    res.shadow.seconds = Seconds(t0);
+    res.shadow.rays = res.p_hit * n_lights;
+    res.s_hit = Sum(row_count);
+    res.s_miss = res.shadow.rays - res.s_hit;
+    if (record) Append(&rows, &res.rays);
+  }
+
+  // 3. Ambient-occlusion rays.
+  if (ao_samples > 0) {
+    t0 = Clock::now();
+    ForRows(h, threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) {
+        uint64_t blocked = 0;
+        for (int x = 0; x < w; ++x) {
+          const size_t p = static_cast<size_t>(y) * w + x;
+          const Hit& hit = res.primary_hits[p];
+          if (!hit.hit()) continue;
+          const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
+          int open = 0;
+          for (int s = 0; s < ao_samples; ++s) {
+            const Ray ray = AoRay(sp, static_cast<uint32_t>(p), s, view.ao.distance);
+            const bool occ = tracer.Occluded(ray);
+            open += !occ;
+            if (record) {
+              RayRecord rec = MakeRecord(ray, RayKind::kAo, static_cast<uint32_t>(p),
+                                         static_cast<uint16_t>(s));
+              rec.hit = occ;
+              rows[y].push_back(rec);
+            }
+          }
+          ao_open[p] = static_cast<uint16_t>(open);
+          blocked += ao_samples - open;
+        }
+        row_count[y] = blocked;
+      }
+    });
+    res.ao.seconds = Seconds(t0);
+    res.ao.rays = res.p_hit * ao_samples;
+    res.ao_hit = Sum(row_count);
+    res.ao_miss = res.ao.rays - res.ao_hit;
+    if (record) Append(&rows, &res.rays);
+  }
+
+  // 4. Shading.
+  res.rgb.resize(pixels * 3);
+  const uint8_t bg[3] = {ToByte(options.background.x), ToByte(options.background.y),
+                         ToByte(options.background.z)};
+  ForRows(h, threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const size_t p = static_cast<size_t>(y) * w + x;
+        const Hit& hit = res.primary_hits[p];
+        if (!hit.hit()) {
+          res.rgb[3 * p] = bg[0];
+          res.rgb[3 * p + 1] = bg[1];
+          res.rgb[3 * p + 2] = bg[2];
+          continue;
+        }
+        const Ray ray = camera.PrimaryRay(x, y);
+        const SurfacePoint sp = MakeSurfacePoint(soup, ray, hit);
+        const float ao = ao_samples > 0 ? static_cast<float>(ao_open[p]) / ao_samples : 1.0f;
+        float direct = 0.0f;
+        if (n_lights > 0) {
+          for (int l = 0; l < n_lights; ++l) {
+            if (shadows && occluded[p * n_lights + l]) continue;
+            direct += std::fmax(0.0f, Dot(sp.normal, Normalize(view.lights[l].position - sp.p)));
+          }
+          direct /= static_cast<float>(n_lights);
+        } else {
+          direct = std::fabs(Dot(sp.normal, ray.dir));
+        }
+        const Vec3 c = options.albedo * (options.ambient * ao + (1.0f - options.ambient) * direct);
+        res.rgb[3 * p] = ToByte(c.x);
+        res.rgb[3 * p + 1] = ToByte(c.y);
+        res.rgb[3 * p + 2] = ToByte(c.z);
+      }
+    }
+  });
+  res.seconds = Seconds(start);
+  return res;
+}
+
+}  // namespace kdtree

@@ -1,0 +1,143 @@
+#include "cc/render/renderer.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/render/compare.h"
+#include "cc/render/kdtree_tracer.h"
+#include "cc/render/test_scene.h"
+#include "cc/render/traversal_counts.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+struct Fixture {
+  TriangleSoup soup = testing::SphereOnGround();
+  KdTree tree;
+  Fixture() {
+    absl::StatusOr<Config> config = Preset("clipping-pruning");
+    absl::StatusOr<KdTree> t = BuildKdTree(soup, *config);
+    EXPECT_TRUE(t.ok());
+    tree = *std::move(t);
+  }
+};
+
+const Fixture& Scene() {
+  static const Fixture* f = new Fixture();
+  return *f;
+}
+
+RenderResult RenderKd(const View& view, int threads, bool record) {
+  const KdTreeTracer tracer(Scene().tree);
+  RenderOptions opt;
+  opt.threads = threads;
+  opt.record_rays = record;
+  return Render(Scene().soup, tracer, view, opt);
+}
+
+TEST(Renderer, NoLightTracesNoShadowRays) {
+  const RenderResult r = RenderKd(testing::SphereView(64, 48, 1.0f, /*with_light=*/false), 1, true);
+  EXPECT_EQ(r.primary.rays, 64u * 48u);
+  EXPECT_EQ(r.p_hit + r.p_miss, 64u * 48u);
+  EXPECT_GT(r.p_hit, 0u);
+  EXPECT_GT(r.p_miss, 0u);
+  EXPECT_EQ(r.shadow.rays, 0u);
+  EXPECT_EQ(r.s_hit + r.s_miss, 0u);
+  EXPECT_EQ(r.ao.rays, 0u);
+  EXPECT_EQ(r.rays.size(), 64u * 48u);
+  EXPECT_EQ(r.rgb.size(), 64u * 48u * 3u);
+}
+
+TEST(Renderer, OneShadowRayPerPrimaryHit) {
+  const RenderResult r = RenderKd(testing::SphereView(64, 64), 1, true);
+  EXPECT_EQ(r.s_hit + r.s_miss, r.p_hit);
+  EXPECT_EQ(r.shadow.rays, r.p_hit);
+  EXPECT_GT(r.s_hit, 0u);   // the sphere shadows the ground
+  EXPECT_GT(r.s_miss, 0u);  // and the lit parts are lit
+  EXPECT_EQ(r.rays.size(), r.p_hit + r.p_miss + r.s_hit + r.s_miss);
+  EXPECT_EQ(r.total_rays(), r.rays.size());
+}
+
+TEST(Renderer, ShadowsOffTracesNoShadowRays) {
+  const KdTreeTracer tracer(Scene().tree);
+  RenderOptions opt;
+  opt.cast_shadow_rays = false;
+  const RenderResult r = Render(Scene().soup, tracer, testing::SphereView(32, 32), opt);
+  EXPECT_EQ(r.shadow.rays, 0u);
+  EXPECT_GT(r.p_hit, 0u);
+}
+
+TEST(Renderer, AmbientOcclusionOnlyWhenAsked) {
+  View view = testing::SphereView(32, 32);
+  view.ao.samples = 4;
+  view.ao.distance = 0.5f;
+  const RenderResult r = RenderKd(view, 1, true);
+  EXPECT_EQ(r.ao.rays, 4 * r.p_hit);
+  EXPECT_EQ(r.ao_hit + r.ao_miss, r.ao.rays);
+  EXPECT_GT(r.ao_hit, 0u);  // the ground under the sphere is occluded
+  EXPECT_EQ(r.rays.size(), r.p_hit + r.p_miss + r.shadow.rays + r.ao.rays);
+}
+
+TEST(Renderer, IdenticalForOneAndTwoThreads) {
+  View view = testing::SphereView(96, 80);
+  view.ao.samples = 2;
+  view.ao.distance = 0.3f;
+  const RenderResult a = RenderKd(view, 1, true);
+  const RenderResult b = RenderKd(view, 2, true);
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_EQ(a.p_hit, b.p_hit);
+  EXPECT_EQ(a.s_hit, b.s_hit);
+  EXPECT_EQ(a.ao_hit, b.ao_hit);
+  EXPECT_TRUE(a.rays == b.rays);
+}
+
+TEST(Renderer, KdTreeAndBruteForceGiveIdenticalHitBuffers) {
+  const View view = testing::SphereView(80, 80);
+  const BruteForce bf(Scene().soup);
+  const BruteForceTracer brute(bf);
+  RenderOptions opt;
+  opt.record_rays = true;
+  const RenderResult ref = Render(Scene().soup, brute, view, opt);
+  const RenderResult kd = RenderKd(view, 1, true);
+  ASSERT_EQ(ref.primary_hits.size(), kd.primary_hits.size());
+  for (size_t i = 0; i < ref.primary_hits.size(); ++i) {
+    EXPECT_EQ(ref.primary_hits[i].tri, kd.primary_hits[i].tri) << "pixel " << i;
+    EXPECT_EQ(ref.primary_hits[i].t, kd.primary_hits[i].t) << "pixel " << i;
+  }
+  EXPECT_TRUE(ref.rays == kd.rays);
+  EXPECT_EQ(ref.rgb, kd.rgb);
+  const Disagreements d = CompareTracers(kd.rays, KdTreeTracer(Scene().tree), brute);
+  EXPECT_EQ(d.all.total(), 0u) << d.ToJson();
+}
+
+TEST(Renderer, CountingPassReplaysTheSameResults) {
+  const RenderResult r = RenderKd(testing::SphereView(64, 64), 1, true);
+  const RayCounts c = CountTraversal(Scene().tree, r.rays);
+  EXPECT_EQ(c.result_mismatches, 0u);
+  EXPECT_EQ(c.all.rays, r.rays.size());
+  EXPECT_EQ(c.by_kind[0].rays, r.primary.rays);
+  EXPECT_EQ(c.by_kind[1].rays, r.shadow.rays);
+  EXPECT_GT(c.n_it(), 0.0);
+  EXPECT_GT(c.n_tr(), 0.0);
+}
+
+TEST(Renderer, LitImageHasShadowAndBackground) {
+  const RenderResult r = RenderKd(testing::SphereView(64, 64), 1, false);
+  // Top-left corner misses everything: background.
+  EXPECT_EQ(r.rgb[0], r.rgb[3]);
+  EXPECT_FALSE(r.primary_hits[0].hit());
+  // Some hit pixel is darker than another (shadow / shading variation).
+  int lo = 255, hi = 0;
+  for (size_t p = 0; p < r.primary_hits.size(); ++p) {
+    if (!r.primary_hits[p].hit()) continue;
+    lo = std::min<int>(lo, r.rgb[3 * p]);
+    hi = std::max<int>(hi, r.rgb[3 * p]);
+  }
+  EXPECT_GT(hi - lo, 80);
+}
+
+}  // namespace
+}  // namespace kdtree

@@ -1,0 +1,78 @@
+#include "cc/render/secondary_rays.h"
+
+#include <cmath>
+
+namespace kdtree {
+namespace {
+
+float MaxAbs(const Vec3& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
+
+// Orthonormal basis around unit n: Duff et al., "Building an orthonormal
+// basis, revisited", JCGT 6(1), 2017.
+void Basis(const Vec3& n, Vec3* b1, Vec3* b2) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  *b1 = Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  *b2 = Vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+}  // namespace
+
+SurfacePoint MakeSurfacePoint(const TriangleSoup& soup, const Ray& ray, const Hit& hit) {
+  const Vec3& a = soup.a(hit.tri);
+  const Vec3& b = soup.b(hit.tri);
+  const Vec3& c = soup.c(hit.tri);
+  const Vec3 e1 = b - a, e2 = c - a;
+  SurfacePoint sp;
+  sp.p = a + e1 * hit.u + e2 * hit.v;
+  Vec3 n = Normalize(Cross(e1, e2));
+  if (Dot(n, ray.dir) > 0.0f) n = -n;
+  sp.normal = n;
+  sp.eps = kOffsetScale * std::fmax(MaxAbs(a), std::fmax(MaxAbs(b), MaxAbs(c)));
+  sp.origin = sp.p + n * sp.eps;
+  return sp;
+}
+
+Ray ShadowRay(const SurfacePoint& sp, const Vec3& light) {
+  const Vec3 to = light - sp.origin;
+  const float dist = Length(to);
+  Ray r;
+  r.origin = sp.origin;
+  if (dist > 0.0f && std::isfinite(dist)) {
+    r.dir = to / dist;
+    r.tmax = dist * (1.0f - kShadowTmaxShrink);
+  } else {  // light at the point itself: an empty interval, never occluded
+    r.dir = sp.normal;
+    r.tmax = 0.0f;
+  }
+  r.tmin = 0.0f;
+  return r;
+}
+
+void HashUniforms(uint32_t pixel, uint32_t sample, float* r1, float* r2) {
+  uint64_t z = (static_cast<uint64_t>(pixel) << 32 | sample) + 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  z ^= z >> 31;
+  *r1 = static_cast<float>(z >> 40) * (1.0f / 16777216.0f);
+  *r2 = static_cast<float>((z >> 8) & 0xffffff) * (1.0f / 16777216.0f);
+}
+
+Ray AoRay(const SurfacePoint& sp, uint32_t pixel, int sample, float distance) {
+  float r1, r2;
+  HashUniforms(pixel, static_cast<uint32_t>(sample), &r1, &r2);
+  const float phi = 6.28318530717958647f * r1;
+  const float r = std::sqrt(r2);
+  const float z = std::sqrt(std::fmax(0.0f, 1.0f - r2));
+  Vec3 b1, b2;
+  Basis(sp.normal, &b1, &b2);
+  Ray ray;
+  ray.origin = sp.origin;
+  ray.dir = Normalize(b1 * (r * std::cos(phi)) + b2 * (r * std::sin(phi)) + sp.normal * z);
+  ray.tmin = 0.0f;
+  ray.tmax = distance;
+  return ray;
+}
+
+}  // namespace kdtree

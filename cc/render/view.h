@@ -1,0 +1,86 @@
+// What to render: camera, image size, point lights, optional ambient occlusion.
+//
+// The report renders each scene from a `.view` file extended with a point
+// light (its section "Results": files ending in `_L.view`). Its exact syntax is
+// not printed, so this project uses its own small text format in the same
+// spirit (same block style as the environment files):
+//
+//   # comments run from '#' or '//' to the end of the line
+//   camera {
+//     position 0.1 0.2 2.5     # eye point
+//     look_at  0 0.1 0         # the image centre looks at this point
+//     up       0 1 0           # optional, default 0 1 0
+//     fov      45              # optional, default 45: vertical field of view
+//   }                          #   in degrees (the full angle, 0 < fov < 180)
+//   resolution 800 800         # optional, default 800 800 (width height)
+//   light { position 1 2 3 }   # zero or more point lights
+//   ambient_occlusion { samples 16 distance 0.05 }   # optional effect
+//
+// Tokens are separated by white space; '{' and '}' are tokens of their own
+// even when written against a word. `camera` is required, once; inside a
+// block each key may appear once (position and look_at required). Numbers
+// must be finite. `distance` of ambient occlusion is in scene units. A view
+// without any light renders with a headlight shading and traces no shadow
+// rays. Errors name the file, the line and the reason.
+#ifndef KDTREE_CC_RENDER_VIEW_H_
+#define KDTREE_CC_RENDER_VIEW_H_
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "cc/geometry/aabb.h"
+#include "cc/geometry/vec3.h"
+
+namespace kdtree {
+
+struct CameraSpec {
+  Vec3 position;
+  Vec3 look_at;
+  Vec3 up{0, 1, 0};
+  float fov_deg = 45.0f;  // vertical, full angle
+};
+
+struct PointLight {
+  Vec3 position;
+};
+
+struct AmbientOcclusion {
+  int samples = 0;        // rays per primary hit; 0 = effect off
+  float distance = 0.0f;  // ray length in scene units
+  bool enabled() const { return samples > 0; }
+};
+
+struct View {
+  CameraSpec camera;
+  int width = 800;
+  int height = 800;
+  std::vector<PointLight> lights;
+  AmbientOcclusion ao;
+
+  // Camera not degenerate (eye != look_at, up not along the view direction),
+  // 0 < fov < 180, 1 <= width, height <= 16384, AO samples in [0, 4096] with
+  // distance > 0 when on, everything finite. `where` prefixes the message.
+  absl::Status Validate(const std::string& where) const;
+};
+
+// Parses the format above; `filename` is used in error messages only.
+absl::StatusOr<View> ParseView(const std::string& text, const std::string& filename);
+
+// Reads and parses a view file.
+absl::StatusOr<View> LoadViewFile(const std::string& path);
+
+// The view in the format above (ParseView(ViewToText(v)) == v up to float
+// printing, which uses %.9g and so round-trips exactly).
+std::string ViewToText(const View& view);
+
+// A view framing `bounds` (y up): the bounding sphere fits a 45 degree view
+// from the +z side, the eye raised 15 degrees above the centre, 5% margin; one
+// point light above-front-right at centre + r (0.5, 1.5, 1.0) with r the
+// half diagonal. The same rule as data/fetch.py's camera_from_bounds for
+// objects, so a scene without a manifest camera looks the same either way.
+View AutoView(const AABB& bounds);
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_RENDER_VIEW_H_

@@ -1,0 +1,96 @@
+#!/bin/bash
+# kdrt end to end on a small generated OBJ: the PNG and the JSON record, the
+# zero-shadow-ray rule for a lightless view, the ray dump, thread determinism
+# and the Embree comparison.
+set -euo pipefail
+KDRT="$TEST_SRCDIR/$TEST_WORKSPACE/cc/tools/kdrt"
+T="$TEST_TMPDIR"
+cd "$T"
+
+# A closed octahedron above a ground quad.
+cat > scene.obj <<'OBJ'
+v 0 1 0
+v 1 0 0
+v 0 0 1
+v -1 0 0
+v 0 0 -1
+v 0 -1 0
+v -4 -1.5 -4
+v 4 -1.5 -4
+v 4 -1.5 4
+v -4 -1.5 4
+f 1 3 2
+f 1 4 3
+f 1 5 4
+f 1 2 5
+f 6 2 3
+f 6 3 4
+f 6 4 5
+f 6 5 2
+f 7 9 8
+f 7 10 9
+OBJ
+cat > lit.view <<'VIEW'
+camera { position 0.5 2 6 look_at 0 -0.5 0 fov 45 }
+resolution 64 48
+light { position -3 6 3 }
+VIEW
+cat > dark.view <<'VIEW'
+camera { position 0.5 2 6 look_at 0 -0.5 0 }
+resolution 64 48
+VIEW
+
+"$KDRT" --mesh=scene.obj --view=lit.view --out=out --repeats=2 --cache_dir= \
+  --dump_rays=rays.bin --embree=medium > lit.json
+"$KDRT" --mesh=scene.obj --view=dark.view --out=out --repeats=1 --cache_dir= \
+  --preset=median-24-8 > dark.json
+"$KDRT" --mesh=scene.obj --view=lit.view --out=out2 --repeats=1 --cache_dir= --threads=2 \
+  --max_leaf_size=1 > lit2.json
+"$KDRT" --mesh=scene.obj --view=lit.view --out=out3 --repeats=1 --cache_dir= --threads=1 \
+  --max_leaf_size=1 > lit1.json
+if "$KDRT" --mesh=scene.obj --preset=bogus --cache_dir= > /dev/null 2> err.txt; then
+  echo "bad preset accepted"; exit 1
+fi
+grep -q "bogus" err.txt
+
+test -s out/scene_clipping-pruning.png
+test -s out/scene_median-24-8.png
+test "$(wc -l < out/results.jsonl)" -eq 2
+# 32 + 56 n + 8 bytes
+size=$(stat -c %s rays.bin)
+test $(( (size - 40) % 56 )) -eq 0
+
+/usr/bin/python3 - <<'PY'
+import json
+lit = json.load(open("lit.json"))
+dark = json.load(open("dark.json"))
+one = json.load(open("lit1.json"))
+two = json.load(open("lit2.json"))
+def check(cond, msg):
+    if not cond:
+        raise SystemExit("FAIL: " + msg)
+for k in ["scene", "mesh", "n_tri", "preset", "config", "env", "threads", "repeats", "T_B",
+          "T_B_runs", "T_R", "T_R_runs", "perf_krays", "all_rays_per_s", "N_IT", "N_TR", "N_I",
+          "N_L", "N_TP", "N_AP", "mem_report_mb", "R_E", "D_max", "D_avg", "N_CL", "N_PR",
+          "P_hit", "P_miss", "S_hit", "S_miss", "effects", "build", "git_commit", "cpu_model",
+          "embree", "disagreements", "perf_ratio_kd_over_embree"]:
+    check(k in lit, "missing " + k)
+check(lit["scene"] == "scene" and lit["n_tri"] == 10, "scene / n_tri")
+check(len(lit["T_B_runs"]) == 2 and len(lit["T_R_runs"]) == 2, "runs")
+check(lit["P_hit"] + lit["P_miss"] == 64 * 48, "primary count")
+check(lit["S_hit"] + lit["S_miss"] == lit["P_hit"], "one shadow ray per hit")
+check(lit["S_hit"] > 0 and lit["S_miss"] > 0, "shadow and light")
+check(abs(lit["perf_krays"] - 64 * 48 / lit["T_R"] / 1000) < 1e-6 * lit["perf_krays"], "perf")
+check(lit["effects"]["shadow"]["rays"] == lit["P_hit"], "shadow rays")
+check(lit["embree"]["P_hit"] == lit["P_hit"], "embree P_hit")
+check(lit["disagreements"]["other"] == 0, "embree disagreements")
+check(lit["counting_mismatches"] == 0, "counting pass")
+check(lit["traversal"]["primary"]["rays"] == 64 * 48, "counted rays")
+check(dark["lights"] == 0 and dark["S_hit"] + dark["S_miss"] == 0, "no light, no shadow rays")
+check(dark["effects"]["shadow"]["rays"] == 0, "no shadow rays")
+check(dark["embree"] is None and dark["preset"] == "median-24-8", "dark record")
+check(one["image_fnv64"] == two["image_fnv64"], "1 and 2 threads give the same image")
+check(one["S_hit"] == two["S_hit"] and one["N_IT"] == two["N_IT"], "1 and 2 threads counts")
+check(one["label"] == "clipping-pruning+custom" and one["config"]["max_leaf_size"] == 1, "override")
+print("ok")
+PY
