@@ -30,6 +30,7 @@ from analysis import kdtree_figures  # noqa: E402
 from analysis import kdtree_tables  # noqa: E402
 from analysis import latex  # noqa: E402
 from analysis import machine  # noqa: E402
+from analysis import planar  # noqa: E402
 from analysis import row18  # noqa: E402
 from analysis import seed_tables  # noqa: E402
 from analysis import table1  # noqa: E402
@@ -40,6 +41,7 @@ GENERATORS = [
     table1,
     seed_tables,
     row18,
+    planar,
     figures,
     kdtree_tables,
     kdtree_figures,

@@ -17,7 +17,9 @@ EXPECTED_MACROS = [
     "NumReportScenes", "Profile",
 ] + row18.MACROS + [
     "KdCpus", "NumKdScenes", "NumKdRuns", "ClaimsTotal", "ClaimsConfirmed",
-    "ClaimsRefuted", "ClaimsMixed"]
+    "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
+    "PlanarWorstLost", "PlanarWorstHitsLost", "PlanarDefaultLost",
+    "PlanarTriangles"]
 
 
 class MakeAllTest(unittest.TestCase):

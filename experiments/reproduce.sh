@@ -33,7 +33,8 @@ elif [ "$fetch_rc" -ne 0 ]; then
 fi
 
 step "build tools"
-bazel build -c opt //cc/tools:scene_info //cc/seed:row18_tool
+bazel build -c opt //cc/tools:scene_info //cc/tools:kdrt //cc/seed:row18_tool
+BIN="$(bazel info -c opt bazel-bin)"
 # The bazel-bin symlink follows whichever configuration was built last: ask
 # for the opt output directory instead of trusting it.
 SCENE_INFO="$(bazel info -c opt bazel-bin)/cc/tools/scene_info"
@@ -50,6 +51,15 @@ ROW18_TMP="$(mktemp -d)"
   --expected "$ROOT/data/seed/row18.csv" > "$RESULTS/row18.jsonl.new"
 mv "$RESULTS/row18.jsonl.new" "$RESULTS/row18.jsonl"
 rm -rf "$ROW18_TMP"
+
+step "kd-tree matrix: the report's nine variants on every scene ($PROFILE)"
+# Resumable: finished (scene, variant) runs are not rerun.
+"$PY" experiments/run_matrix.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \
+  --out "$OUT"
+
+step "in-plane triangles: seed-compatible vs default mode on a voxel world"
+"$PY" experiments/planar.py --kdrt "$BIN/cc/tools/kdrt" --out "$OUT" || \
+  echo "reproduce: some planar runs failed (see above)" >&2
 
 # ---------------------------------------------------------------------------
 # LATER STAGES GO HERE (each appends raw records under $RESULTS and has a
