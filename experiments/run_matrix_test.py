@@ -79,6 +79,15 @@ class RunMatrixTest(unittest.TestCase):
         self.assertEqual(self.run_matrix(out), 0)
         self.assertEqual(len(self.records(out)), 6)
 
+    def test_reads_the_index_shape_fetch_py_writes(self):
+        with open(self.index, "w") as f:
+            json.dump({"scenes": {"a": {"file": "data/cache/scenes/a.obj",
+                                        "triangles": 3}}}, f)
+        import scenes
+        index = scenes.load_index(self.index)
+        self.assertEqual(list(index), ["a"])
+        self.assertTrue(index["a"].endswith("data/cache/scenes/a.obj"))
+
     def test_task_mode_writes_a_part_per_index(self):
         out = os.path.join(self.tmp.name, "out")
         os.makedirs(out)

@@ -71,7 +71,8 @@ def load_manifest(path):
 
 def load_index(path):
     """{name: absolute mesh path} from fetch.py's index. Accepts
-    {"name": "path"}, {"name": {"path": ...}}, or [{"name":, "path":}], also
+    {"name": "path"}, {"name": {"file" or "path": ...}} (data/fetch.py writes
+    "file"), or [{"name":, "path":}], also
     wrapped as {"scenes": ...}. Relative paths are resolved against the repo
     root, then against the index's directory."""
     if not os.path.exists(path):
@@ -85,12 +86,12 @@ def load_index(path):
     if isinstance(data, dict):
         for name, value in data.items():
             if isinstance(value, dict):
-                value = value.get("path")
+                value = value.get("file") or value.get("path")
             entries.append((name, value))
     elif isinstance(data, list):
         for item in data:
             if isinstance(item, dict):
-                entries.append((item.get("name"), item.get("path")))
+                entries.append((item.get("name"), item.get("file") or item.get("path")))
     else:
         raise SetupError("%s: unrecognised index shape" % path)
     index_dir = os.path.dirname(os.path.abspath(path))
