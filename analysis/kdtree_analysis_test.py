@@ -114,6 +114,20 @@ class KdtreeAnalysisTest(unittest.TestCase):
         macros = kdtree_tables.generate(self.ctx)
         self.assertEqual(macros["KdCpus"][0], "CPU A; CPU B")
 
+    def test_embree_table_uses_the_fastest_variant(self):
+        from analysis import embree
+        path = os.path.join(self.ctx.results_dir, kr.KDTREE_FILE)
+        with open(path, "a") as f:
+            rec = record("alpha", "clipping", T_R=0.4)
+            rec["embree"] = {"T_B": 0.1, "T_R": 0.2, "disagreements_grazing": 2,
+                             "disagreements_other": 0}
+            f.write(json.dumps(rec) + "\n")
+        macros = embree.generate(self.ctx)
+        self.assertEqual(macros["EmbreeScenes"][0], "1")
+        self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")
+        self.assertEqual(macros["EmbreeGrazingDisagreements"][0], "2")
+        self.assertIn("Clipping", self.read("embree.tex"))
+
     def test_figures_are_written(self):
         kdtree_figures.generate(self.ctx)
         for name in ("fig1_build.pdf", "fig2_render.pdf"):

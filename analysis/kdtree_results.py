@@ -41,6 +41,9 @@ FIELDS = {
     "embree_T_B": ["embree.T_B"], "embree_T_R": ["embree.T_R"],
     "embree_perf": ["embree.perf_krays", "embree.perf"],
     "embree_disagree": ["embree.disagreements", "embree.disagree"],
+    "embree_grazing": ["embree.disagreements_grazing"],
+    "embree_other": ["embree.disagreements_other"],
+    "embree_rays_per_s": ["embree.all_rays_per_s"],
     "cpu": ["cpu", "machine.cpu", "cpu_model"],
 }
 

@@ -25,6 +25,7 @@ if __package__ in (None, ""):
 
 from analysis import claims  # noqa: E402
 from analysis import context  # noqa: E402
+from analysis import embree  # noqa: E402
 from analysis import figures  # noqa: E402
 from analysis import kdtree_figures  # noqa: E402
 from analysis import kdtree_tables  # noqa: E402
@@ -46,6 +47,7 @@ GENERATORS = [
     kdtree_tables,
     kdtree_figures,
     claims,
+    embree,
     # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
 ]
 

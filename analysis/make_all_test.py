@@ -18,8 +18,9 @@ EXPECTED_MACROS = [
 ] + row18.MACROS + [
     "KdCpus", "NumKdScenes", "NumKdRuns", "ClaimsTotal", "ClaimsConfirmed",
     "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
-    "PlanarWorstLost", "PlanarWorstHitsLost", "PlanarDefaultLost",
-    "PlanarTriangles"]
+    "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
+    "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
+    "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements"]
 
 
 class MakeAllTest(unittest.TestCase):
