@@ -3,6 +3,9 @@
 // Moeller & Trumbore, "Fast, minimum storage ray-triangle intersection",
 // Journal of Graphics Tools 2(1), 1997. The kd-tree and the brute-force
 // reference call this same function, so their answers can be compared exactly.
+// This is the fast mode (IntersectionMode::kFast); it can miss a ray through an
+// edge shared by two triangles. The default is the watertight test of
+// watertight.h.
 #ifndef KDTREE_CC_GEOMETRY_INTERSECT_H_
 #define KDTREE_CC_GEOMETRY_INTERSECT_H_
 

@@ -32,8 +32,12 @@ struct BinScratch {
 // [0, bins - 1]. Float arithmetic in this order (seed-compatible).
 inline int BinOf(float x, float lo, float extent, int bins) {
   const float f = (x - lo) * static_cast<float>(bins) / extent;
-  int b = f >= 0.0f ? static_cast<int>(f) : 0;
-  return b < bins ? b : bins - 1;
+  // Clamp before converting: a reference box may reach far beyond a tiny node
+  // (f up to +inf), and converting a float beyond INT_MAX to int is undefined
+  // (INT_MIN on x86: a write before the bins). Same bins as before otherwise.
+  if (!(f >= 0.0f)) return 0;  // negative or NaN
+  if (!(f < static_cast<float>(bins))) return bins - 1;
+  return static_cast<int>(f);
 }
 
 // Position of candidate plane i (1 <= i < bins) of an axis [lo, lo + extent].

@@ -3,52 +3,87 @@
 #include <cmath>
 #include <cstdint>
 
+#include "cc/geometry/ray_check.h"
+#include "cc/geometry/watertight.h"
+
 namespace kdtree {
 
-BruteForce::BruteForce(const TriangleSoup& soup) {
+namespace {
+
+// Every index 0 .. n-1, iterable like a candidate list.
+struct AllIndices {
+  uint32_t n;
+  struct It {
+    uint32_t i;
+    uint32_t operator*() const { return i; }
+    It& operator++() {
+      ++i;
+      return *this;
+    }
+    bool operator!=(const It& o) const { return i != o.i; }
+  };
+  It begin() const { return {0}; }
+  It end() const { return {n}; }
+};
+
+}  // namespace
+
+BruteForce::BruteForce(const TriangleSoup& soup) : verts_(soup.v) {
   tris_.reserve(soup.size());
-  for (size_t i = 0; i < soup.size(); ++i) tris_.push_back(MakeTriAccel(soup.a(i), soup.b(i), soup.c(i)));
+  for (size_t i = 0; i < soup.size(); ++i) {
+    tris_.push_back(MakeTriAccel(soup.a(i), soup.b(i), soup.c(i)));
+  }
 }
 
-Hit BruteForce::Intersect(const Ray& ray) const {
+template <IntersectionMode kMode, bool kAnyHit, typename Indices>
+Hit BruteForce::Run(const Ray& input, const Indices& indices) const {
   Hit best;
+  Ray ray = input;
+  if (!SanitizeRay(&ray)) return best;
+  WatertightRay wray{};
+  if (kMode == IntersectionMode::kWatertight) wray = MakeWatertightRay(ray);
   best.t = ray.tmax;
-  for (size_t i = 0; i < tris_.size(); ++i) {
+  for (const uint32_t tri : indices) {
     float t, u, v;
-    const uint32_t tri = static_cast<uint32_t>(i);
-    if (IntersectTriangle(ray, tris_[i], ray.tmin, best.t, &t, &u, &v) && Closer(t, tri, best)) {
+    bool hit;
+    if (kMode == IntersectionMode::kWatertight) {
+      const Vec3* p = &verts_[3 * static_cast<size_t>(tri)];
+      hit = IntersectTriangleWatertight(wray, p[0], p[1], p[2], ray.tmin, best.t, &t, &u, &v);
+    } else {
+      hit = IntersectTriangle(ray, tris_[tri], ray.tmin, best.t, &t, &u, &v);
+    }
+    if (hit && Closer(t, tri, best)) {
       best.tri = tri;
       best.t = t;
       best.u = u;
       best.v = v;
+      if (kAnyHit) break;
     }
   }
   if (!best.hit()) best.t = INFINITY;
   return best;
 }
 
-Hit BruteForce::Intersect(const Ray& ray, const std::vector<uint32_t>& candidates) const {
-  Hit best;
-  best.t = ray.tmax;
-  for (const uint32_t tri : candidates) {
-    float t, u, v;
-    if (IntersectTriangle(ray, tris_[tri], ray.tmin, best.t, &t, &u, &v) && Closer(t, tri, best)) {
-      best.tri = tri;
-      best.t = t;
-      best.u = u;
-      best.v = v;
-    }
-  }
-  if (!best.hit()) best.t = INFINITY;
-  return best;
+Hit BruteForce::Intersect(const Ray& ray, IntersectionMode mode) const {
+  const AllIndices all{static_cast<uint32_t>(tris_.size())};
+  return mode == IntersectionMode::kWatertight
+             ? Run<IntersectionMode::kWatertight, false>(ray, all)
+             : Run<IntersectionMode::kFast, false>(ray, all);
 }
 
-bool BruteForce::Occluded(const Ray& ray) const {
-  for (const TriAccel& tri : tris_) {
-    float t, u, v;
-    if (IntersectTriangle(ray, tri, ray.tmin, ray.tmax, &t, &u, &v)) return true;
-  }
-  return false;
+Hit BruteForce::Intersect(const Ray& ray, const std::vector<uint32_t>& candidates,
+                          IntersectionMode mode) const {
+  return mode == IntersectionMode::kWatertight
+             ? Run<IntersectionMode::kWatertight, false>(ray, candidates)
+             : Run<IntersectionMode::kFast, false>(ray, candidates);
+}
+
+bool BruteForce::Occluded(const Ray& ray, IntersectionMode mode) const {
+  const AllIndices all{static_cast<uint32_t>(tris_.size())};
+  return (mode == IntersectionMode::kWatertight
+              ? Run<IntersectionMode::kWatertight, true>(ray, all)
+              : Run<IntersectionMode::kFast, true>(ray, all))
+      .hit();
 }
 
 }  // namespace kdtree

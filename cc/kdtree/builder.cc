@@ -200,6 +200,7 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   for (size_t i = 0; i < soup.size(); ++i) {
     tree.tris.push_back(MakeTriAccel(soup.a(i), soup.b(i), soup.c(i)));
   }
+  tree.verts = soup.v;
   Builder builder(soup, config, &tree);
   if (absl::Status s = builder.Run(); !s.ok()) return s;
   tree.build_seconds =

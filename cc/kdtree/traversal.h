@@ -6,24 +6,51 @@
 // sign bit clear, so -0 counts as negative and +0 as positive), the right one
 // otherwise. With t_split the distance to the plane and [t_entry, t_exit] the
 // ray's interval in the node:
-//   t_split > t_exit (+ tol)    -> near child only
-//   t_split < t_entry (- tol)   -> far child only
-//   otherwise (ends included)   -> near child on [t_entry, t_split], the far
-//                                  child on [t_split, t_exit] pushed on a stack.
-// tol = 1e-6 t_exit, so float rounding of t_split never skips a child the ray
-// touches. A ray lying in the plane (0 * inf = NaN) visits both children whole.
-// A leaf's triangles are tested against the best hit so far; the search ends
-// when the best hit lies inside the leaf's interval (t <= t_exit), which is
-// the report's rule; a hit beyond t_exit is kept as the best so far and only
-// confirmed once no node that could hold a nearer one is left.
+//   t_split > t_exit + tol      -> near child only
+//   t_split < t_entry - tol     -> far child only
+//   otherwise                   -> near child on [t_entry, t_split + tol], the
+//                                  far child on [t_split - tol, t_exit] pushed
+//                                  on a stack (t_split clamped to the interval).
+// A leaf's triangles are tested against the best hit so far; a hit beyond the
+// leaf is kept as the best so far and only confirmed once no node that could
+// hold a nearer one is left.
 //
-// Per-ray counters (N_IT: triangle tests, N_TR: inner nodes visited) are a
-// template parameter, so the fast path carries no counting code at all.
+// Robustness (the hard cases of the adversarial suite, cc/robust/):
+//  - Every plane is treated as delta thick, delta = 16 * 2^-24 * (the largest
+//    coordinate difference between the ray origin and the scene box): a
+//    triangle test may accept a point a few ulps of that distance outside the
+//    triangle (the shear of the watertight test rounds; Moeller-Trumbore more
+//    so), and the leaf holding such a hit must still be visited. In t this is
+//    tol = delta / |dir[axis]|, which also covers the rounding of t_split.
+//  - Rays parallel to a split plane (direction +0 or -0 on its axis, 1/d
+//    infinite): t_split is +-inf (never 0 * inf: no NaN decides anything); the
+//    ray visits the side its origin is on, or both children whole when the
+//    origin is within delta of the plane (origins exactly on the plane
+//    included, where (split - o) * inf is NaN).
+//  - Origins exactly on a split plane with a nonzero direction: t_split = 0,
+//    both children are visited from t = 0.
+//  - The root interval is padded by 1 + 2 gamma(3) (Ize, "Robust BVH Ray
+//    Traversal", JCGT 2(2), 2013) and by delta per slab.
+//  - The search ends only when every remaining node starts beyond best.t +
+//    slack, slack = 64 * 2^-24 * (the ray's largest depth, in t, of the scene
+//    box along its dominant axis): a bound on the rounding of a triangle's t,
+//    so a triangle whose computed t ties with or undercuts the best hit is
+//    still tested, and the answer is exactly the brute-force one (ties
+//    included: Closer()).
+//  - Rays are checked by SanitizeRay (cc/geometry/ray_check.h): NaN/Inf
+//    components, a zero direction or a NaN interval make a miss.
+//
+// Intersection mode (cc/geometry/intersection_mode.h): kWatertight (Woop et
+// al. 2013, the default) or kFast (Moeller-Trumbore); the traversal is the same.
+//
+// Per-ray counters (N_IT: triangle tests, N_TR: inner nodes visited) and the
+// mode are template parameters, so the fast path carries no counting code.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
 #include <cstdint>
 
+#include "cc/geometry/intersection_mode.h"
 #include "cc/geometry/ray.h"
 #include "cc/kdtree/tree.h"
 
@@ -46,13 +73,23 @@ struct TraversalCounters {
 // maxDepth at 60.
 inline constexpr int kMaxTraversalStack = 64;
 
-// Closest hit with ray.tmin < t <= ray.tmax (ties: smaller triangle index).
+// Closest hit with ray.tmin < t <= ray.tmax (ties: smaller triangle index),
+// watertight test.
 Hit Intersect(const KdTree& tree, const Ray& ray);
 Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters);
+// The same with the test chosen; `counters` may be null.
+Hit Intersect(const KdTree& tree, const Ray& ray, IntersectionMode mode);
+Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
+              IntersectionMode mode);
 
-// True when any triangle is hit with ray.tmin < t <= ray.tmax (early exit).
+// True when any triangle is hit with ray.tmin < t <= ray.tmax (early exit),
+// watertight test.
 bool Occluded(const KdTree& tree, const Ray& ray);
 bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters);
+// The same with the test chosen; `counters` may be null.
+bool Occluded(const KdTree& tree, const Ray& ray, IntersectionMode mode);
+bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
+              IntersectionMode mode);
 
 // The ray's interval [*t0, *t1] inside box, clipped to [ray.tmin, ray.tmax];
 // false when it misses. Handles zero direction components and NaN.

@@ -1,6 +1,8 @@
-// Every preset against the brute-force reference: closest hit (triangle, or t
-// within 1e-6 relative where two triangles tie) and any hit, on 100k seeded
-// random rays plus every ray of an 800x800 camera, per scene.
+// Every preset against the brute-force reference in the same intersection
+// mode: closest hit (triangle, or t within 1e-6 relative where two triangles
+// tie) and any hit, per scene. Watertight mode (the default): 100k seeded
+// random rays plus every ray of an 800x800 camera; fast mode (Moeller-Trumbore):
+// the first 5k of the random rays plus every 8th camera row (100 rows).
 #include "cc/kdtree/traversal.h"
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <random>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -24,10 +27,19 @@
 namespace kdtree {
 namespace {
 
+constexpr size_t kFastRandomRays = 5000;
+constexpr int kFastRowStep = 8;
+
 struct Scene {
   TriangleSoup soup;
-  std::vector<Ray> rays;
-  std::vector<Hit> reference;  // brute force closest hits
+  std::vector<Ray> rays;       // n_random random rays, then the camera rays
+  size_t n_random = 0;
+  std::vector<Hit> reference;  // brute force closest hits, watertight
+  std::vector<Hit> reference_fast;  // fast mode; set only for the rays UsedIn() it
+  bool UsedIn(IntersectionMode mode, size_t i) const {
+    return mode == IntersectionMode::kWatertight || i < kFastRandomRays ||
+           (i >= n_random && (i - n_random) / 800 % kFastRowStep == 0);
+  }
 };
 
 TriangleSoup MakeSoup(const std::string& name) {
@@ -72,15 +84,21 @@ const Scene& GetScene(const std::string& name) {
   const std::vector<Ray> cam = testing::CameraRays(s.soup, 800, 800);
   s.rays.insert(s.rays.end(), cam.begin(), cam.end());
   BruteForce bf(s.soup);
-  s.reference.reserve(s.rays.size());
-  // Random rays: every triangle, on all cores.
   const size_t n_random = s.rays.size() - cam.size();
-  s.reference.resize(n_random);
+  s.n_random = n_random;
+  s.reference.resize(s.rays.size());
+  s.reference_fast.resize(s.rays.size());
+  // Random rays: every triangle, on all cores.
   const unsigned workers = std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> pool;
   for (unsigned w = 0; w < workers; ++w) {
     pool.emplace_back([&, w] {
-      for (size_t i = w; i < n_random; i += workers) s.reference[i] = bf.Intersect(s.rays[i]);
+      for (size_t i = w; i < n_random; i += workers) {
+        s.reference[i] = bf.Intersect(s.rays[i], IntersectionMode::kWatertight);
+        if (i < kFastRandomRays) {
+          s.reference_fast[i] = bf.Intersect(s.rays[i], IntersectionMode::kFast);
+        }
+      }
     });
   }
   for (std::thread& t : pool) t.join();
@@ -109,15 +127,22 @@ const Scene& GetScene(const std::string& name) {
       }
       if (lo <= margin && hi >= -margin) candidates.push_back(static_cast<uint32_t>(t));
     }
-    for (int x = 0; x < 800; ++x) s.reference.push_back(bf.Intersect(cam[row * 800 + x], candidates));
+    for (int x = 0; x < 800; ++x) {
+      const size_t i = n_random + row * 800 + x;
+      s.reference[i] = bf.Intersect(s.rays[i], candidates, IntersectionMode::kWatertight);
+      if (row % kFastRowStep == 0) {
+        s.reference_fast[i] = bf.Intersect(s.rays[i], candidates, IntersectionMode::kFast);
+      }
+    }
   }
   return s;
 }
 
-class VsBruteForce : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+class VsBruteForce
+    : public ::testing::TestWithParam<std::tuple<std::string, std::string, IntersectionMode>> {};
 
 TEST_P(VsBruteForce, EveryRayAgrees) {
-  const auto& [scene_name, preset] = GetParam();
+  const auto& [scene_name, preset, mode] = GetParam();
   const Scene& scene = GetScene(scene_name);
   ASSERT_FALSE(scene.soup.empty());
   absl::StatusOr<Config> config = Preset(preset);
@@ -129,11 +154,17 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
   EXPECT_EQ(stats.lost_planar, 0u);
 
   int closest_mismatch = 0, any_mismatch = 0, hits = 0;
+  size_t rays = 0;
   TraversalCounters counters;
+  const std::vector<Hit>& reference =
+      mode == IntersectionMode::kWatertight ? scene.reference : scene.reference_fast;
   for (size_t i = 0; i < scene.rays.size(); ++i) {
+    if (!scene.UsedIn(mode, i)) continue;
+    ++rays;
     const Ray& ray = scene.rays[i];
-    const Hit& want = scene.reference[i];
-    const Hit got = Intersect(*tree, ray, &counters);
+    const Hit& want = reference[i];
+    const Hit got = mode == IntersectionMode::kWatertight ? Intersect(*tree, ray, &counters)
+                                                          : Intersect(*tree, ray, &counters, mode);
     hits += want.hit();
     bool same = got.hit() == want.hit();
     if (same && want.hit() && got.tri != want.tri) {
@@ -143,16 +174,16 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
       ADD_FAILURE() << "ray " << i << ": kd-tree tri " << got.tri << " t " << got.t
                     << ", brute force tri " << want.tri << " t " << want.t;
     }
-    if (Occluded(*tree, ray) != want.hit() && ++any_mismatch <= 5) {
+    if (Occluded(*tree, ray, mode) != want.hit() && ++any_mismatch <= 5) {
       ADD_FAILURE() << "ray " << i << ": any-hit disagrees with brute-force closest hit";
     }
   }
   EXPECT_EQ(closest_mismatch, 0);
   EXPECT_EQ(any_mismatch, 0);
-  EXPECT_GT(hits, static_cast<int>(scene.rays.size() / 20)) << "the rays should hit the scene";
-  EXPECT_EQ(counters.rays, scene.rays.size());
-  std::printf("%s/%s: %zu rays, %d hits, N_IT %.2f, N_TR %.2f, %s\n", scene_name.c_str(),
-              preset.c_str(), scene.rays.size(), hits,
+  EXPECT_GT(hits, static_cast<int>(rays / 40)) << "the rays should hit the scene";
+  EXPECT_EQ(counters.rays, rays);
+  std::printf("%s/%s/%s: %zu rays, %d hits, N_IT %.2f, N_TR %.2f, %s\n", scene_name.c_str(),
+              preset.c_str(), IntersectionModeName(mode), rays, hits,
               static_cast<double>(counters.triangle_tests) / counters.rays,
               static_cast<double>(counters.inner_visits) / counters.rays,
               StatsToJson(stats).c_str());
@@ -161,9 +192,11 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
 INSTANTIATE_TEST_SUITE_P(
     AllPresets, VsBruteForce,
     ::testing::Combine(::testing::Values("bunny", "sphere", "voxels", "thin", "flat", "tiny"),
-                       ::testing::ValuesIn(PresetNames())),
+                       ::testing::ValuesIn(PresetNames()),
+                       ::testing::Values(IntersectionMode::kWatertight, IntersectionMode::kFast)),
     [](const ::testing::TestParamInfo<VsBruteForce::ParamType>& info) {
-      std::string name = absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param));
+      std::string name = absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param), "_",
+                                      IntersectionModeName(std::get<2>(info.param)));
       for (char& c : name) if (c == '-') c = '_';
       return name;
     });
@@ -178,10 +211,57 @@ TEST(Traversal, EmptyTreeMissesEverything) {
 TEST(Traversal, NanRayIsAMiss) {
   absl::StatusOr<KdTree> tree = BuildKdTree(testing::BumpySphere(1, 1), Config());
   ASSERT_TRUE(tree.ok());
-  const float nan = std::nanf("");
-  EXPECT_FALSE(Intersect(*tree, Ray{{nan, 0, 0}, {1, 0, 0}}).hit());
-  EXPECT_FALSE(Intersect(*tree, Ray{{-5, 0, 0}, {nan, 0, 0}}).hit());
-  EXPECT_TRUE(Intersect(*tree, Ray{{-5, 0, 0}, {1, 0, 0}}).hit());
+  const float nan = std::nanf(""), inf = INFINITY;
+  for (IntersectionMode mode : {IntersectionMode::kWatertight, IntersectionMode::kFast}) {
+    for (const Ray& bad : {Ray{{nan, 0, 0}, {1, 0, 0}}, Ray{{-5, 0, 0}, {nan, 0, 0}},
+                           Ray{{-inf, 0, 0}, {1, 0, 0}}, Ray{{-5, 0, 0}, {inf, 0, 0}},
+                           Ray{{-5, 0, 0}, {0, 0, 0}}, Ray{{-5, 0, 0}, {1, 0, 0}, nan, inf},
+                           Ray{{-5, 0, 0}, {1, 0, 0}, 0, nan}}) {
+      EXPECT_FALSE(Intersect(*tree, bad, mode).hit());
+      EXPECT_FALSE(Occluded(*tree, bad, mode));
+    }
+    EXPECT_TRUE(Intersect(*tree, Ray{{-5, 0, 0}, {1, 0, 0}}, mode).hit());
+  }
+}
+
+TEST(Traversal, DefaultIsWatertight) {
+  // 400 pairs of triangles, each pair sharing an edge, on a grid; rays through
+  // points of each shared edge: the default (watertight) hits every time, the
+  // fast test misses some.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1, 1);
+  TriangleSoup s;
+  std::vector<Ray> rays;
+  for (int gx = 0; gx < 20; ++gx) {
+    for (int gy = 0; gy < 20; ++gy) {
+      const Vec3 centre(10.0f * gx, 10.0f * gy, 5);
+      const Vec3 p = centre + Vec3(u(rng), u(rng), u(rng));
+      const Vec3 q = centre + Vec3(u(rng), u(rng), u(rng));
+      const Vec3 r1 = centre + Vec3(u(rng), u(rng), u(rng)), r2 = p + q - r1;
+      s.Add(p, q, r1);
+      s.Add(q, p, r2);
+      for (int k = 1; k < 16; ++k) {
+        const Vec3 target = p + (q - p) * (k / 16.0f);
+        const Vec3 origin = centre + Vec3(0.3f * u(rng), 0.3f * u(rng), -5 + u(rng));
+        rays.push_back(Ray{origin, target - origin});
+      }
+    }
+  }
+  absl::StatusOr<KdTree> tree = BuildKdTree(s, Config());
+  ASSERT_TRUE(tree.ok());
+  int fast_misses = 0;
+  const BruteForce bf(s);
+  for (const Ray& ray : rays) {
+    EXPECT_TRUE(Intersect(*tree, ray).hit())
+        << "brute force " << bf.Intersect(ray).hit() << ", origin " << ray.origin.x << " "
+        << ray.origin.y << " " << ray.origin.z << ", dir " << ray.dir.x << " " << ray.dir.y << " "
+        << ray.dir.z;
+    EXPECT_TRUE(Occluded(*tree, ray));
+    fast_misses += !Intersect(*tree, ray, IntersectionMode::kFast).hit();
+  }
+  EXPECT_GT(fast_misses, 0) << "the fast test should miss some of these";
+  std::printf("shared edges: fast mode misses %d of %zu rays, watertight 0\n", fast_misses,
+              rays.size());
 }
 
 TEST(Traversal, ShadowRayStopsAtTmax) {

@@ -55,6 +55,10 @@ struct KdTree {
   std::vector<KdNode> nodes;    // nodes[0] is the root
   std::vector<uint32_t> refs;   // count-prefixed leaf lists; refs[0] == 0
   std::vector<TriAccel> tris;   // per-triangle intersection data, by index
+  // The triangles' vertices, 3 per triangle (a, b, c as in the soup): the
+  // watertight test (cc/geometry/watertight.h) needs the exact shared vertices,
+  // which v0 + e1 of TriAccel does not reproduce.
+  std::vector<Vec3> verts;
   BuildCounters counters;
   double build_seconds = 0;     // T_B: triangles in memory to traversable tree
 

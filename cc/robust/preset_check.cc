@@ -1,0 +1,198 @@
+#include "cc/robust/preset_check.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <thread>
+#include <utility>
+
+#include "absl/strings/str_format.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/traversal.h"
+
+namespace kdtree {
+namespace robust {
+
+std::vector<std::string> CheckedPresets() {
+  std::vector<std::string> names = {"default"};
+  for (const std::string& n : PresetNames()) names.push_back(n);
+  return names;
+}
+
+absl::StatusOr<Config> ConfigFor(const std::string& name) {
+  if (name == "default") return Config();
+  return Preset(name);
+}
+
+void ParallelFor(size_t n, const std::function<void(size_t, size_t)>& body) {
+  const size_t workers =
+      std::max<size_t>(1, std::min<size_t>(std::thread::hardware_concurrency(), 8));
+  if (workers == 1 || n < 1024) {
+    body(0, n);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const size_t chunk = (n + workers - 1) / workers;
+  for (size_t w = 0; w < workers; ++w) {
+    const size_t begin = std::min(n, w * chunk), end = std::min(n, begin + chunk);
+    pool.emplace_back([&body, begin, end] { body(begin, end); });
+  }
+  for (std::thread& t : pool) t.join();
+}
+
+std::vector<Hit> BruteForceHits(const TriangleSoup& soup, const std::vector<Ray>& rays,
+                                IntersectionMode mode) {
+  const BruteForce bf(soup);
+  std::vector<Hit> hits(rays.size());
+  ParallelFor(rays.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) hits[i] = bf.Intersect(rays[i], mode);
+  });
+  return hits;
+}
+
+namespace {
+bool SameHit(const Hit& a, const Hit& b) {
+  if (a.hit() != b.hit()) return false;
+  return !a.hit() || (a.tri == b.tri && a.t == b.t && a.u == b.u && a.v == b.v);
+}
+}  // namespace
+
+CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
+                      const std::vector<Hit>& reference, IntersectionMode mode) {
+  CheckResult r;
+  r.mode = mode;
+  r.rays = rays.size();
+  std::vector<char> bad(rays.size(), 0), bad_any(rays.size(), 0);
+  ParallelFor(rays.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const Hit got = Intersect(tree, rays[i], mode);
+      bad[i] = !SameHit(got, reference[i]);
+      bad_any[i] = Occluded(tree, rays[i], mode) != reference[i].hit();
+    }
+  });
+  for (size_t i = 0; i < rays.size(); ++i) {
+    r.hits += reference[i].hit();
+    r.mismatches += bad[i];
+    r.any_hit_mismatches += bad_any[i];
+    if ((bad[i] || bad_any[i]) && r.examples.size() < 5) r.examples.push_back(i);
+  }
+  return r;
+}
+
+std::string ResultJson(const std::string& case_name, const CheckResult& r) {
+  return absl::StrFormat(
+      "{\"case\": \"%s\", \"preset\": \"%s\", \"mode\": \"%s\", \"rays\": %d, \"hits\": %d, "
+      "\"mismatches\": %d, \"any_hit_mismatches\": %d, \"required\": %s}",
+      case_name, r.preset, IntersectionModeName(r.mode), r.rays, r.hits, r.mismatches,
+      r.any_hit_mismatches, r.informational ? "false" : "true");
+}
+
+namespace {
+
+void PrintExamples(const std::string& case_name, const std::string& preset, const KdTree& tree,
+                   const std::vector<Ray>& rays, const std::vector<Hit>& reference,
+                   const CheckResult& r) {
+  for (size_t i : r.examples) {  // enough to replay a failure
+    const Ray& ray = rays[i];
+    const Hit got = Intersect(tree, ray, r.mode), want = reference[i];
+    std::printf("%s/%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a) "
+                "tmin %a tmax %a: kd-tree tri %d t %.9g (any-hit %d), brute force tri %d "
+                "t %.9g\n",
+                case_name.c_str(), preset.c_str(), IntersectionModeName(r.mode), i, ray.origin.x,
+                ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin, ray.tmax,
+                got.hit() ? static_cast<int>(got.tri) : -1, got.t,
+                Occluded(tree, ray, r.mode) ? 1 : 0, want.hit() ? static_cast<int>(want.tri) : -1,
+                want.t);
+  }
+}
+
+std::vector<CheckResult> Check(const std::string& case_name, const TriangleSoup& soup,
+                               const std::vector<Ray>& rays,
+                               const std::vector<IntersectionMode>& modes,
+                               const std::vector<const std::vector<Hit>*>& references,
+                               const CheckOptions& options) {
+  std::vector<std::string> names = options.presets.empty() ? CheckedPresets() : options.presets;
+  if (options.include_seed) names.push_back("pruning-seed");
+  std::vector<CheckResult> results;
+  for (const std::string& name : names) {
+    absl::StatusOr<Config> config = ConfigFor(name);
+    absl::StatusOr<KdTree> tree =
+        config.ok() ? BuildKdTree(soup, *config) : absl::StatusOr<KdTree>(config.status());
+    for (size_t m = 0; m < modes.size(); ++m) {
+      CheckResult r;
+      if (!tree.ok()) {
+        std::printf("%s/%s: build failed: %s\n", case_name.c_str(), name.c_str(),
+                    tree.status().ToString().c_str());
+        r.mode = modes[m];
+        r.rays = rays.size();
+        r.mismatches = rays.size();  // a failed build fails the check
+      } else {
+        r = CheckTree(*tree, rays, *references[m], modes[m]);
+        PrintExamples(case_name, name, *tree, rays, *references[m], r);
+      }
+      r.preset = name;
+      r.informational = name == "pruning-seed";
+      std::printf("ROBUST_JSON %s\n", ResultJson(case_name, r).c_str());
+      results.push_back(std::move(r));
+    }
+  }
+  std::fflush(stdout);
+  return results;
+}
+
+}  // namespace
+
+std::vector<CheckResult> CheckAllPresets(const std::string& case_name, const TriangleSoup& soup,
+                                         const std::vector<Ray>& rays, IntersectionMode mode,
+                                         const std::vector<Hit>* reference,
+                                         const CheckOptions& options) {
+  std::vector<Hit> computed;
+  if (reference == nullptr) {
+    computed = BruteForceHits(soup, rays, mode);
+    reference = &computed;
+  }
+  return Check(case_name, soup, rays, {mode}, {reference}, options);
+}
+
+std::vector<CheckResult> CheckAllPresets(const std::string& case_name, const TriangleSoup& soup,
+                                         const std::vector<Ray>& rays,
+                                         const std::vector<IntersectionMode>& modes,
+                                         const CheckOptions& options) {
+  std::vector<std::vector<Hit>> computed;
+  for (IntersectionMode mode : modes) computed.push_back(BruteForceHits(soup, rays, mode));
+  std::vector<const std::vector<Hit>*> references;
+  for (const auto& c : computed) references.push_back(&c);
+  return Check(case_name, soup, rays, modes, references, options);
+}
+
+std::vector<std::vector<float>> SplitValues(const KdTree& tree) {
+  std::vector<std::vector<float>> s(3);
+  for (const KdNode& n : tree.nodes) {
+    if (!n.is_leaf()) s[n.axis()].push_back(n.split);
+  }
+  for (auto& v : s) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+  return s;
+}
+
+std::vector<float> VertexCoordinates(const TriangleSoup& soup, int axis) {
+  std::vector<float> v;
+  v.reserve(soup.v.size());
+  for (const Vec3& p : soup.v) v.push_back(p[axis]);
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+std::vector<float> SortedUnion(const std::vector<std::vector<float>>& parts) {
+  std::vector<float> v;
+  for (const auto& p : parts) v.insert(v.end(), p.begin(), p.end());
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
+}  // namespace robust
+}  // namespace kdtree
