@@ -51,6 +51,7 @@
 #include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
+#include "cc/tools/paths.h"
 #include "cc/tools/run_info.h"
 
 ABSL_FLAG(std::string, scene, "", "Scene name from data/manifest.json (mesh via data/cache/scenes/index.json).");
@@ -81,11 +82,6 @@ namespace {
 std::string Workspace() {
   const char* ws = std::getenv("BUILD_WORKSPACE_DIRECTORY");
   return ws != nullptr && *ws != '\0' ? ws : ".";
-}
-std::string FromInvocationDir(const std::string& path) {
-  const char* dir = std::getenv("BUILD_WORKING_DIRECTORY");
-  if (path.empty() || path[0] == '/' || dir == nullptr || *dir == '\0') return path;
-  return absl::StrCat(dir, "/", path);
 }
 std::string FromWorkspace(const std::string& path) {
   if (path.empty() || path[0] == '/') return path;

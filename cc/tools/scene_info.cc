@@ -20,6 +20,8 @@
 #include "cc/geometry/triangle.h"
 #include "cc/io/mesh_loader.h"
 #include "cc/io/soup_cache.h"
+#include "cc/render/json.h"
+#include "cc/tools/paths.h"
 
 ABSL_FLAG(std::string, mesh, "", "Mesh file to load (anything assimp reads, or .gz of it).");
 ABSL_FLAG(std::string, cache_dir, "", "Triangle-cache directory; empty = no cache.");
@@ -27,36 +29,6 @@ ABSL_FLAG(std::string, name, "", "Scene name, echoed in the output.");
 
 namespace kdtree {
 namespace {
-
-// A JSON string literal (quotes included); bytes >= 0x80 pass through (UTF-8).
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20 || c == 0x7f) {
-          absl::StrAppendFormat(&out, "\\u%04x", c);
-        } else {
-          out += static_cast<char>(c);
-        }
-    }
-  }
-  return out + "\"";
-}
-
-// Relative paths are meant relative to where `bazel run` was invoked.
-std::string FromInvocationDir(const std::string& path) {
-  const char* dir = std::getenv("BUILD_WORKING_DIRECTORY");
-  if (path.empty() || path[0] == '/' || dir == nullptr || *dir == '\0') return path;
-  return absl::StrCat(dir, "/", path);
-}
 
 int Run(const std::vector<char*>& positional) {
   if (positional.size() > 1) {
@@ -87,7 +59,7 @@ int Run(const std::vector<char*>& positional) {
           "{\"scene\": %s, \"mesh\": %s, \"n_tri\": %d, \"skipped_faces\": %d, "
           "\"dropped_degenerate\": %d, \"dropped_nonfinite\": %d, \"load_s\": %.6f, "
           "\"from_cache\": %s, \"bounds\": [[%.9g, %.9g, %.9g], [%.9g, %.9g, %.9g]]}",
-          JsonString(absl::GetFlag(FLAGS_name)), JsonString(mesh), soup->size(),
+          JsonQuote(absl::GetFlag(FLAGS_name)), JsonQuote(mesh), soup->size(),
           report.skipped_faces, report.dropped_degenerate, report.dropped_nonfinite,
           report.load_seconds, report.from_cache ? "true" : "false", box.lo.x, box.lo.y,
           box.lo.z, box.hi.x, box.hi.y, box.hi.z)
