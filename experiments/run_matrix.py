@@ -6,7 +6,9 @@ every obtained scene of a profile, with //cc/tools:kdrt.
         --kdrt "$(bazel info -c opt bazel-bin)/cc/tools/kdrt" [--out out]
 
 Each (scene, variant) runs kdrt once (kdrt itself repeats build and render
---repeats times and keeps the median). The record kdrt writes is appended,
+--repeats times and keeps the median; a profile's "repeat_budget_s" stops
+repeating a step whose runs took that long in all). Locally, --jobs (or the
+profile's "jobs") kdrt processes run at once; each record notes how many. The record kdrt writes is appended,
 with the profile and the runner's wall time, to OUT/results/kdtree.jsonl;
 a failure is appended as {"ok": false, ...} with the end of kdrt's stderr.
 Raw results are append-only: nothing is ever rewritten.
@@ -25,6 +27,7 @@ Standard library only (tqdm for the progress bar and ETA when present).
 """
 
 import argparse
+import concurrent.futures
 import json
 import os
 import shutil
@@ -92,6 +95,8 @@ def kdrt_command(kdrt, scene, variant, settings, out_dir):
            "--threads", str(settings["threads"]),
            "--embree", settings["embree"],
            "--out", out_dir]
+    if settings.get("repeat_budget_s"):
+        cmd += ["--repeat_budget_s", str(settings["repeat_budget_s"])]
     return cmd
 
 
@@ -231,6 +236,39 @@ def run_slurm(pending, settings, args, results_path):
     return failures
 
 
+def run_local(pending, settings, args, results_path, jobs_at_once):
+    """Runs the pending jobs here, `jobs_at_once` kdrt processes at a time
+    (each single-threaded unless the profile says otherwise); appends each
+    record as it finishes. Returns the number of failures."""
+    bar = _tqdm(total=len(pending), unit="run", file=sys.stderr) if _tqdm \
+        else None
+    failures = 0
+
+    def one(job):
+        scene, _, variant = job
+        rec = run_job(args.kdrt, scene, variant, settings, args.out,
+                      args.profile)
+        rec["backend"] = "local"
+        rec["concurrent_jobs"] = jobs_at_once
+        return rec
+
+    with concurrent.futures.ThreadPoolExecutor(jobs_at_once) as pool:
+        for rec in pool.map(one, pending):
+            append_record(results_path, rec)
+            if not rec["ok"]:
+                failures += 1
+                print("run_matrix: %s/%s failed (exit %s): %s"
+                      % (rec["scene"], rec["preset"], rec["returncode"],
+                         rec["error"].strip().splitlines()[-1:] or ""),
+                      file=sys.stderr)
+            if bar:
+                bar.set_description("%s/%s" % (rec["scene"], rec["preset"]))
+                bar.update(1)
+    if bar:
+        bar.close()
+    return failures
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--profile", default="quick")
@@ -244,8 +282,10 @@ def main(argv=None):
     p.add_argument("--repeats", type=int, help="override the profile's")
     p.add_argument("--embree", help="override the profile's (off|low|medium|high)")
     p.add_argument("--force", action="store_true")
+    p.add_argument("--jobs", type=int, help="local runs at once (default: "
+                   "the profile's 'jobs', else 1); each record notes it")
     p.add_argument("--backend", choices=["local", "slurm"], default="local",
-                   help="local: one job after another here; slurm: one "
+                   help="local: here, --jobs runs at a time; slurm: one "
                    "sbatch --array over the pending jobs")
     p.add_argument("--partition", help="SLURM partition (default: the "
                    "cluster's default)")
@@ -296,26 +336,8 @@ def main(argv=None):
         print("run_matrix: %d SLURM tasks, %d failed" % (len(pending), failures),
               file=sys.stderr)
         return 0
-    bar = _tqdm(total=len(pending), unit="run", file=sys.stderr) if _tqdm \
-        else None
-    failures = 0
-    for scene, _, variant in pending:
-        if bar:
-            bar.set_description("%s/%s" % (scene, variant))
-        rec = run_job(args.kdrt, scene, variant, settings, args.out,
-                      args.profile)
-        rec["backend"] = "local"
-        append_record(results_path, rec)
-        if not rec["ok"]:
-            failures += 1
-            print("run_matrix: %s/%s failed (exit %s): %s"
-                  % (scene, variant, rec["returncode"],
-                     rec["error"].strip().splitlines()[-1:] or ""),
-                  file=sys.stderr)
-        if bar:
-            bar.update(1)
-    if bar:
-        bar.close()
+    jobs_at_once = max(1, args.jobs or int(settings.get("jobs", 1)))
+    failures = run_local(pending, settings, args, results_path, jobs_at_once)
     print("run_matrix: %d runs, %d failed" % (len(pending), failures),
           file=sys.stderr)
     return 0

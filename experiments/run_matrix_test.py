@@ -79,6 +79,23 @@ class RunMatrixTest(unittest.TestCase):
         self.assertEqual(self.run_matrix(out), 0)
         self.assertEqual(len(self.records(out)), 6)
 
+    def test_two_jobs_at_once_keep_the_job_order(self):
+        out = os.path.join(self.tmp.name, "out")
+        self.assertEqual(self.run_matrix(out, "--jobs", "2"), 0)
+        recs = self.records(out)
+        self.assertEqual([(r["scene"], r["preset"], r["ok"]) for r in recs], [
+            ("a", "median-16-2", True), ("a", "clipping", True),
+            ("broken", "median-16-2", False), ("broken", "clipping", False)])
+        self.assertEqual({r["concurrent_jobs"] for r in recs}, {2})
+
+    def test_repeat_budget_reaches_kdrt_only_when_set(self):
+        s = {"repeats": 5, "threads": 1, "embree": "off"}
+        self.assertNotIn("--repeat_budget_s",
+                         run_matrix.kdrt_command("k", "a", "pruning", s, "o"))
+        s["repeat_budget_s"] = 30
+        cmd = run_matrix.kdrt_command("k", "a", "pruning", s, "o")
+        self.assertEqual(cmd[cmd.index("--repeat_budget_s") + 1], "30")
+
     def test_reads_the_index_shape_fetch_py_writes(self):
         with open(self.index, "w") as f:
             json.dump({"scenes": {"a": {"file": "data/cache/scenes/a.obj",

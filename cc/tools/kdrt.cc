@@ -6,7 +6,8 @@
 //       --preset=clipping-pruning --out=/tmp/kdrt --repeats=3 --embree=medium
 //
 // Steps: load the mesh (through the soup cache); build the tree `repeats`
-// times (T_B = median); render `repeats` times on the non-counting fast path
+// times (T_B = median; --repeat_budget_s caps the runs of a slow step, at
+// least one); render `repeats` times on the non-counting fast path
 // (T_R = median; renderer.h); render once more recording every ray (the same
 // rays: the renderer is deterministic) and replay them with the counting
 // traversal for N_IT / N_TR (traversal_counts.h); optionally dump the rays;
@@ -72,6 +73,9 @@ ABSL_FLAG(std::string, label, "", "Name of the configuration in file names and r
 ABSL_FLAG(std::string, out, "", "Output directory: <scene>_<label>.png and results.jsonl ('' = no files).");
 ABSL_FLAG(int, threads, 1, "Render threads (1 = no TBB); also Embree's device threads.");
 ABSL_FLAG(int, repeats, 5, "Builds and renders per tracer; medians are reported.");
+ABSL_FLAG(double, repeat_budget_s, 0,
+          "Stop repeating a timed build or render once its runs took this many seconds in all "
+          "(at least one run; 0 = always --repeats runs). Every run is recorded.");
 ABSL_FLAG(std::string, dump_rays, "", "Write every ray and its kd-tree result here (cc/render/ray_dump.h).");
 ABSL_FLAG(std::string, embree, "off", "off | low | medium | high: also build and render with Embree.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
@@ -132,15 +136,25 @@ uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
   return h;
 }
 
-// Timed renders of one tracer: medians over `repeats` runs.
+// Whether to time one more run: fewer than `repeats` so far, and (with a
+// budget) the runs so far took less than `budget_s` seconds in all.
+bool MoreRuns(const std::vector<double>& runs, int repeats, double budget_s) {
+  if (runs.empty()) return true;
+  if (static_cast<int>(runs.size()) >= repeats) return false;
+  double spent = 0;
+  for (double r : runs) spent += r;
+  return budget_s <= 0 || spent < budget_s;
+}
+
+// Timed renders of one tracer: medians over up to `repeats` runs.
 struct Timed {
   RenderResult last;
   std::vector<double> t_r, t_primary, t_shadow, t_ao;
 };
 Timed TimeRenders(const TriangleSoup& soup, const Tracer& tracer, const View& view,
-                  const RenderOptions& opt, int repeats, Progress* progress) {
+                  const RenderOptions& opt, int repeats, double budget_s, Progress* progress) {
   Timed t;
-  for (int i = 0; i < repeats; ++i) {
+  for (int i = 0; MoreRuns(t.t_r, repeats, budget_s); ++i) {
     progress->Step(absl::StrFormat("%s render %d/%d", tracer.name(), i + 1, repeats));
     t.last = Render(soup, tracer, view, opt);
     t.t_r.push_back(t.last.seconds);
@@ -176,6 +190,7 @@ absl::Status MakeDirs(const std::string& dir) {
 absl::Status Run() {
   const int repeats = absl::GetFlag(FLAGS_repeats), threads = absl::GetFlag(FLAGS_threads);
   if (repeats < 1 || threads < 1) return absl::InvalidArgumentError("--repeats and --threads must be >= 1");
+  const double budget_s = absl::GetFlag(FLAGS_repeat_budget_s);
   // Scene and mesh.
   std::string scene = absl::GetFlag(FLAGS_scene), mesh = FromInvocationDir(absl::GetFlag(FLAGS_mesh));
   View view;
@@ -237,7 +252,7 @@ absl::Status Run() {
   // kd-tree: builds, timed renders, recorded render, counting pass.
   std::vector<double> tb_runs;
   absl::StatusOr<KdTree> tree;
-  for (int i = 0; i < repeats; ++i) {
+  for (int i = 0; MoreRuns(tb_runs, repeats, budget_s); ++i) {
     progress.Step(absl::StrFormat("build %d/%d", i + 1, repeats));
     tree = BuildKdTree(*soup, rc->config);
     if (!tree.ok()) return tree.status();
@@ -248,7 +263,7 @@ absl::Status Run() {
   RenderOptions ropt;
   ropt.threads = threads;
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
-  const Timed kt = TimeRenders(*soup, kd, view, ropt, repeats, &progress);
+  const Timed kt = TimeRenders(*soup, kd, view, ropt, repeats, budget_s, &progress);
   progress.Step("recording rays");
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
@@ -276,7 +291,7 @@ absl::Status Run() {
     eo.threads = threads;
     std::vector<double> eb_runs;
     std::unique_ptr<EmbreeTracer> embree;
-    for (int i = 0; i < repeats; ++i) {
+    for (int i = 0; MoreRuns(eb_runs, repeats, budget_s); ++i) {
       progress.Step(absl::StrFormat("embree build %d/%d", i + 1, repeats));
       embree.reset();
       absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, eo);
@@ -284,7 +299,7 @@ absl::Status Run() {
       embree = *std::move(e);
       eb_runs.push_back(embree->build_seconds());
     }
-    const Timed et = TimeRenders(*soup, *embree, view, ropt, repeats, &progress);
+    const Timed et = TimeRenders(*soup, *embree, view, ropt, repeats, budget_s, &progress);
     const double e_tr = Median(et.t_r);
     const RenderResult& er = et.last;
     progress.Step("comparing with embree");
@@ -324,7 +339,7 @@ absl::Status Run() {
       "\"use_binning\": %s, \"use_driving_axis\": %s, \"bins\": %d, \"use_clipping\": %s, "
       "\"use_pruning\": %s, \"cast_shadow_rays\": %s, \"seed_compatible\": %s}, \"env\": %s, "
       "\"view_source\": %s, \"view\": %s, \"width\": %d, \"height\": %d, \"lights\": %d, "
-      "\"threads\": %d, \"repeats\": %d, \"T_B\": %s, \"T_B_runs\": %s, \"T_R\": %s, \"T_R_runs\": %s, "
+      "\"threads\": %d, \"repeats\": %d, \"repeat_budget_s\": %s, \"T_B\": %s, \"T_B_runs\": %s, \"T_R\": %s, \"T_R_runs\": %s, "
       "\"perf_krays\": %s, \"all_rays_per_s\": %s, \"rays_total\": %d, \"N_IT\": %s, \"N_TR\": %s, "
       "\"traversal\": {\"primary\": %s, \"shadow\": %s, \"ao\": %s}, \"counting_mismatches\": %d, %s, "
       "\"P_hit\": %d, \"P_miss\": %d, \"S_hit\": %d, \"S_miss\": %d, \"AO_hit\": %d, \"AO_miss\": %d, "
@@ -338,7 +353,7 @@ absl::Status Run() {
       c.use_driving_axis ? "true" : "false", c.bins, c.use_clipping ? "true" : "false",
       c.use_pruning ? "true" : "false", c.cast_shadow_rays ? "true" : "false",
       c.seed_compatible ? "true" : "false", JsonQuote(c.ToEnvironment()), JsonQuote(view_source),
-      JsonQuote(ViewToText(view)), view.width, view.height, view.lights.size(), threads, repeats,
+      JsonQuote(ViewToText(view)), view.width, view.height, view.lights.size(), threads, repeats, JsonNumber(budget_s),
       JsonNumber(Median(tb_runs)), Array(tb_runs), JsonNumber(t_r), Array(kt.t_r),
       JsonNumber(pixels / t_r / 1000.0), JsonNumber(r.total_rays() / t_r), r.total_rays(),
       JsonNumber(counts.n_it()), JsonNumber(counts.n_tr()), TraversalJson(counts.by_kind[0]),

@@ -48,6 +48,9 @@ VIEW
   --max_leaf_size=1 > lit2.json
 "$KDRT" --mesh=scene.obj --view=lit.view --out=out3 --repeats=1 --cache_dir= --threads=1 \
   --max_leaf_size=1 > lit1.json
+# A budget of ~0 s: every timed step runs once although --repeats=4.
+"$KDRT" --mesh=scene.obj --view=lit.view --repeats=4 --repeat_budget_s=1e-12 --cache_dir= \
+  --embree=medium > budget.json
 if "$KDRT" --mesh=scene.obj --preset=bogus --cache_dir= > /dev/null 2> err.txt; then
   echo "bad preset accepted"; exit 1
 fi
@@ -65,6 +68,7 @@ import json
 lit = json.load(open("lit.json"))
 dark = json.load(open("dark.json"))
 one = json.load(open("lit1.json"))
+budget = json.load(open("budget.json"))
 two = json.load(open("lit2.json"))
 def check(cond, msg):
     if not cond:
@@ -92,5 +96,10 @@ check(dark["embree"] is None and dark["preset"] == "median-24-8", "dark record")
 check(one["image_fnv64"] == two["image_fnv64"], "1 and 2 threads give the same image")
 check(one["S_hit"] == two["S_hit"] and one["N_IT"] == two["N_IT"], "1 and 2 threads counts")
 check(one["label"] == "clipping-pruning+custom" and one["config"]["max_leaf_size"] == 1, "override")
+check(budget["repeats"] == 4 and budget["repeat_budget_s"] == 1e-12, "budget recorded")
+check(len(budget["T_B_runs"]) == 1 and len(budget["T_R_runs"]) == 1, "budget: one kd-tree run each")
+check(len(budget["embree"]["T_B_runs"]) == 1 and len(budget["embree"]["T_R_runs"]) == 1,
+      "budget: one Embree run each")
+check(lit["repeat_budget_s"] == 0, "no budget by default")
 print("ok")
 PY
