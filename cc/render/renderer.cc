@@ -221,7 +221,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
         if (n_lights > 0) {
           for (int l = 0; l < n_lights; ++l) {
             if (shadows && occluded[p * n_lights + l]) continue;
-            direct += std::fmax(0.0f, Dot(sp.normal, Normalize(view.lights[l].position - sp.p)));
+            direct += std::fmax(0.0f, Dot(sp.normal, Normalize(view.lights[l].position - sp.p())));
           }
           direct /= static_cast<float>(n_lights);
         } else {

@@ -5,8 +5,6 @@
 namespace kdtree {
 namespace {
 
-float MaxAbs(const Vec3& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
-
 // Orthonormal basis around unit n: Duff et al., "Building an orthonormal
 // basis, revisited", JCGT 6(1), 2017.
 void Basis(const Vec3& n, Vec3* b1, Vec3* b2) {
@@ -23,31 +21,16 @@ SurfacePoint MakeSurfacePoint(const TriangleSoup& soup, const Ray& ray, const Hi
   const Vec3& a = soup.a(hit.tri);
   const Vec3& b = soup.b(hit.tri);
   const Vec3& c = soup.c(hit.tri);
-  const Vec3 e1 = b - a, e2 = c - a;
   SurfacePoint sp;
-  sp.p = a + e1 * hit.u + e2 * hit.v;
-  Vec3 n = Normalize(Cross(e1, e2));
+  sp.point = HitPointWithError(a, b, c, hit.u, hit.v);
+  Vec3 n = GeometricNormal(a, b, c);
   if (Dot(n, ray.dir) > 0.0f) n = -n;
   sp.normal = n;
-  sp.eps = kOffsetScale * std::fmax(MaxAbs(a), std::fmax(MaxAbs(b), MaxAbs(c)));
-  sp.origin = sp.p + n * sp.eps;
   return sp;
 }
 
 Ray ShadowRay(const SurfacePoint& sp, const Vec3& light) {
-  const Vec3 to = light - sp.origin;
-  const float dist = Length(to);
-  Ray r;
-  r.origin = sp.origin;
-  if (dist > 0.0f && std::isfinite(dist)) {
-    r.dir = to / dist;
-    r.tmax = dist * (1.0f - kShadowTmaxShrink);
-  } else {  // light at the point itself: an empty interval, never occluded
-    r.dir = sp.normal;
-    r.tmax = 0.0f;
-  }
-  r.tmin = 0.0f;
-  return r;
+  return SpawnShadowRay(sp.point, sp.normal, light);
 }
 
 void HashUniforms(uint32_t pixel, uint32_t sample, float* r1, float* r2) {
@@ -67,9 +50,8 @@ Ray AoRay(const SurfacePoint& sp, uint32_t pixel, int sample, float distance) {
   const float z = std::sqrt(std::fmax(0.0f, 1.0f - r2));
   Vec3 b1, b2;
   Basis(sp.normal, &b1, &b2);
-  Ray ray;
-  ray.origin = sp.origin;
-  ray.dir = Normalize(b1 * (r * std::cos(phi)) + b2 * (r * std::sin(phi)) + sp.normal * z);
+  const Vec3 dir = Normalize(b1 * (r * std::cos(phi)) + b2 * (r * std::sin(phi)) + sp.normal * z);
+  Ray ray = SpawnRay(sp.point, sp.normal, dir);
   ray.tmin = 0.0f;
   ray.tmax = distance;
   return ray;
