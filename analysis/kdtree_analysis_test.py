@@ -38,7 +38,9 @@ def fixture(tmp):
             if v == "median-16-2":
                 over = {"N_IT": 100.0, "N_TR": 5.0, "N_AP": 40.0}
             if v == "clipping":
-                over = {"N_CL": 3000}
+                over = {"N_CL": 3000, "repeats": 5, "repeat_budget_s": 30,
+                        "T_B_runs": [0.5, 0.5], "T_R_runs": [1.0] * 5,
+                        "concurrent_jobs": 2}
             if v == "pruning":
                 over = {"N_PR": 900, "T_R": 0.8}
             if v == "clipping-pruning":
@@ -88,6 +90,13 @@ class KdtreeAnalysisTest(unittest.TestCase):
         self.assertIn("0.010", self.read("table5.tex"))
         rays = self.read("table1_rays.tex")
         self.assertIn("340", rays)
+
+    def test_timing_macros_come_from_the_records(self):
+        macros = kdtree_tables.generate(self.ctx)
+        self.assertEqual(macros["TimingRepeats"][0], "5")
+        self.assertIn("took 30\\,s in all", macros["TimingBudget"][0])
+        self.assertEqual(macros["TimingMinRuns"][0], "2")
+        self.assertEqual(macros["TimingJobs"][0], "2")
 
     def test_claims_have_verdicts_from_the_numbers(self):
         df = kr.frame(self.ctx.results(kr.KDTREE_FILE), self.ctx.manifest)

@@ -45,6 +45,9 @@ FIELDS = {
     "embree_other": ["embree.disagreements_other"],
     "embree_rays_per_s": ["embree.all_rays_per_s"],
     "cpu": ["cpu", "machine.cpu", "cpu_model"],
+    "repeats": ["repeats"], "repeat_budget_s": ["repeat_budget_s"],
+    "concurrent_jobs": ["concurrent_jobs"],
+    "T_B_runs": ["T_B_runs"], "T_R_runs": ["T_R_runs"],
 }
 
 

@@ -82,9 +82,37 @@ def generate(ctx):
                       render(df, scenes, variants, columns, caption,
                              "tab:t%d" % number))
     ctx.write("table1_rays.tex", render_rays(df, scenes))
-    return {"KdCpus": (latex.escape("; ".join(cpus)) or latex.DASH, True),
+    macros = timing_macros(df)
+    macros.update({
+            "KdCpus": (latex.escape("; ".join(cpus)) or latex.DASH, True),
             "NumKdScenes": (str(len(scenes)), False),
-            "NumKdRuns": (str(len(df)), False)}
+            "NumKdRuns": (str(len(df)), False)})
+    return macros
+
+
+def timing_macros(df):
+    """How the timings were taken, from the records themselves: repeats asked,
+    the repeat budget, the fewest runs any timed step got, and how many kdrt
+    processes ran at once."""
+    def ints(col):
+        return [int(v) for v in df[col].tolist()
+                if v is not None and v == v] if col in df else []
+    runs = [len(v) for col in ("T_B_runs", "T_R_runs") if col in df
+            for v in df[col].tolist() if isinstance(v, list)]
+    budgets = sorted({float(v) for v in df["repeat_budget_s"].tolist()
+                      if v is not None and v == v and float(v) > 0}) \
+        if "repeat_budget_s" in df else []
+    repeats, jobs = ints("repeats"), ints("concurrent_jobs")
+    return {
+        "TimingRepeats": (str(max(repeats)) if repeats else latex.DASH, True),
+        "TimingBudget": (
+            ("A timed step stops repeating once its runs took %s\\,s in all "
+             "(so the largest scenes' steps are timed fewer times)."
+             % "/".join("%g" % b for b in budgets)) if budgets
+            else "Every timed step ran all its repeats.", True),
+        "TimingMinRuns": (str(min(runs)) if runs else latex.DASH, True),
+        "TimingJobs": (str(max(jobs)) if jobs else "1", False),
+    }
 
 
 def render_rays(df, scenes):

@@ -16,7 +16,8 @@ EXPECTED_MACROS = [
     "LargestScene", "LargestSceneTriangles", "NumReportScenesCovered",
     "NumReportScenes", "Profile",
 ] + row18.MACROS + [
-    "KdCpus", "NumKdScenes", "NumKdRuns", "ClaimsTotal", "ClaimsConfirmed",
+    "KdCpus", "NumKdScenes", "NumKdRuns", "TimingRepeats", "TimingBudget",
+    "TimingMinRuns", "TimingJobs", "ClaimsTotal", "ClaimsConfirmed",
     "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
