@@ -2,12 +2,14 @@
 
 #include <algorithm>
 
+#include "cc/kdtree/sah_cost.h"
+
 namespace kdtree {
 namespace {
 
 // Sweeps one axis; updates *best when a candidate is strictly cheaper.
 void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bins,
-               BinScratch* s, Split* best) {
+               const Config& config, BinScratch* s, Split* best) {
   const float lo = box.lo[axis];
   const float extent = box.hi[axis] - lo;
   if (!(extent > 0.0f)) return;
@@ -22,8 +24,7 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
     n_left += static_cast<float>(s->starts[i]);
     n_right -= static_cast<float>(s->ends[i]);
     const float plane = BinPlane(lo, extent, i + 1, bins);
-    const float cost =
-        box.LeftOf(axis, plane).SurfaceArea() * n_left + box.RightOf(axis, plane).SurfaceArea() * n_right;
+    const float cost = SplitCost(box, axis, plane, n_left, n_right, config);
     if (!best->found || cost < best->cost) {
       best->found = true;
       best->axis = axis;
@@ -39,10 +40,10 @@ Split FindBinnedSahSplit(const BuildRef* refs, size_t n, const AABB& node_box,
                          const Config& config, BinScratch* scratch) {
   Split best;
   if (config.use_driving_axis) {
-    SweepAxis(refs, n, node_box, node_box.LongestAxis(), config.bins, scratch, &best);
+    SweepAxis(refs, n, node_box, node_box.LongestAxis(), config.bins, config, scratch, &best);
   } else {
     for (int axis = 0; axis < 3; ++axis) {
-      SweepAxis(refs, n, node_box, axis, config.bins, scratch, &best);
+      SweepAxis(refs, n, node_box, axis, config.bins, config, scratch, &best);
     }
   }
   return best;

@@ -10,6 +10,7 @@
 // with N_L += starts[i], N_R -= ends[i]. The first strict minimum wins; with
 // all three axes, they are tried in x, y, z order. There is no cost-based
 // termination (as in the report): a node splits until maxDepth/maxLeafSize.
+// With Config::full_sah the cost is Wald & Havran's full SAH (sah_cost.h).
 #ifndef KDTREE_CC_KDTREE_BINNED_SAH_H_
 #define KDTREE_CC_KDTREE_BINNED_SAH_H_
 

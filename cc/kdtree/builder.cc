@@ -1,5 +1,6 @@
 #include "cc/kdtree/builder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <utility>
@@ -9,18 +10,44 @@
 #include "cc/kdtree/binned_sah.h"
 #include "cc/kdtree/build_ref.h"
 #include "cc/kdtree/clipping.h"
+#include "cc/kdtree/collapse.h"
+#include "cc/kdtree/hybrid_sah.h"
 #include "cc/kdtree/median_split.h"
+#include "cc/kdtree/parallel_build.h"
+#include "cc/kdtree/perfect_split.h"
 #include "cc/kdtree/pruning.h"
+#include "cc/kdtree/sah_cost.h"
+#include "cc/kdtree/sweep_sah.h"
+#include "tbb/task_arena.h"
+#include "tbb/task_group.h"
 
 namespace kdtree {
 namespace {
 
 const AABB kEverywhere(Vec3(-INFINITY, -INFINITY, -INFINITY), Vec3(INFINITY, INFINITY, INFINITY));
 
+// Depth cap: maxDepth, or 8 + 1.3 log2 N with autoDepth (config.h).
+int EffectiveMaxDepth(const Config& config, size_t n) {
+  if (!config.auto_depth) return config.max_depth;
+  const double d = 8.0 + 1.3 * std::log2(static_cast<double>(std::max<size_t>(n, 1)));
+  return std::min(60, static_cast<int>(d));
+}
+
 class Builder {
  public:
-  Builder(const TriangleSoup& soup, const Config& config, KdTree* tree)
-      : soup_(soup), config_(config), tree_(tree) {}
+  Builder(const TriangleSoup& soup, const Config& config, KdTree* tree, int max_depth,
+          bool parallel)
+      : soup_(soup), config_(config), tree_(tree), max_depth_(max_depth), parallel_(parallel) {}
+
+  // Builds a subtree (a fragment, parallel_build.h) over `refs` into tree_.
+  void RunFragment(std::vector<BuildRef> refs, const AABB& box, int depth) {
+    tree_->refs.push_back(0);
+    pool_ = std::move(refs);
+    const size_t n = pool_.size();
+    Recurse(0, n, box, depth);
+  }
+
+  bool overflow() const { return overflow_; }
 
   absl::Status Run() {
     const size_t n = soup_.size();
@@ -49,14 +76,14 @@ class Builder {
     const uint32_t node = static_cast<uint32_t>(tree_->nodes.size());
     tree_->nodes.push_back(KdNode::Leaf(0));
     const size_t count = end - begin;
-    if (count <= static_cast<size_t>(config_.max_leaf_size) || depth >= config_.max_depth) {
+    if (count <= static_cast<size_t>(config_.max_leaf_size) || depth >= max_depth_) {
       MakeLeaf(node, begin, end, box);
       return;
     }
-    const Split split = config_.use_binning
-                            ? FindBinnedSahSplit(&pool_[begin], count, box, config_, &scratch_)
-                            : FindMedianSplit(box);
-    if (!split.found) {
+    const Split split = FindSplit(&pool_[begin], count, box);
+    // Full SAH: split only when it is cheaper than a leaf (sah_cost.h).
+    if (!split.found ||
+        (config_.full_sah && !(static_cast<double>(split.cost) < LeafCost(count, config_)))) {
       MakeLeaf(node, begin, end, box);
       return;
     }
@@ -68,6 +95,11 @@ class Builder {
     const size_t right_end = pool_.size();
     if (pool_.size() > counters().peak_build_refs) counters().peak_build_refs = pool_.size();
 
+    if (parallel_ && count >= kParallelMinRefs && depth < kParallelMaxDepth) {
+      RecurseInParallel(node, left_begin, right_begin, right_end, left_box, right_box, depth,
+                        split);
+      return;
+    }
     Recurse(left_begin, right_begin, left_box, depth + 1);
     const size_t right_node = tree_->nodes.size();
     if (right_node > KdNode::kMaxIndex) overflow_ = true;
@@ -75,6 +107,43 @@ class Builder {
         KdNode::Inner(split.axis, split.pos, static_cast<uint32_t>(right_node & KdNode::kMaxIndex));
     Recurse(right_begin, right_end, right_box, depth + 1);
     pool_.resize(left_begin);
+  }
+
+  Split FindSplit(const BuildRef* refs, size_t count, const AABB& box) {
+    if (!config_.use_binning) return FindMedianSplit(box);
+    switch (config_.split_method) {
+      case Config::SplitMethod::kSweep:
+        return FindSweepSahSplit(refs, count, box, config_, &sweep_);
+      case Config::SplitMethod::kHybrid:
+        return FindHybridSahSplit(refs, count, box, config_, &scratch_, &sweep_);
+      case Config::SplitMethod::kBinned:
+        break;
+    }
+    return FindBinnedSahSplit(refs, count, box, config_, &scratch_);
+  }
+
+  // The two children as two fragments built at once (parallel_build.h).
+  void RecurseInParallel(uint32_t node, size_t left_begin, size_t right_begin, size_t right_end,
+                         const AABB& left_box, const AABB& right_box, int depth,
+                         const Split& split) {
+    std::vector<BuildRef> left(pool_.begin() + left_begin, pool_.begin() + right_begin);
+    std::vector<BuildRef> right(pool_.begin() + right_begin, pool_.begin() + right_end);
+    pool_.resize(left_begin);
+    KdTree left_tree, right_tree;
+    Builder lb(soup_, config_, &left_tree, max_depth_, true);
+    Builder rb(soup_, config_, &right_tree, max_depth_, true);
+    tbb::task_group group;
+    group.run([&] { lb.RunFragment(std::move(left), left_box, depth + 1); });
+    rb.RunFragment(std::move(right), right_box, depth + 1);
+    group.wait();
+    if (lb.overflow() || rb.overflow() || !AppendFragment(left_tree, tree_)) {
+      overflow_ = true;
+      return;
+    }
+    const size_t right_node = tree_->nodes.size();
+    tree_->nodes[node] =
+        KdNode::Inner(split.axis, split.pos, static_cast<uint32_t>(right_node & KdNode::kMaxIndex));
+    if (!AppendFragment(right_tree, tree_)) overflow_ = true;
   }
 
   // Appends the left references, then the right ones, at the end of the pool.
@@ -88,6 +157,10 @@ class Builder {
     for (size_t i = begin; i < end; ++i) {
       const BuildRef r = pool_[i];  // a copy: push_back may reallocate
       const float lo = r.box.lo[axis], hi = r.box.hi[axis];
+      if (config_.perfect_splits && lo < pos && hi > pos) {
+        PerfectSplit(r, left_box, right_box);
+        continue;
+      }
       if (config_.use_clipping && lo < pos && hi > pos) {
         AABB lb, rb;
         // Seed-compatible mode: the parts' boxes are not intersected with the
@@ -118,6 +191,24 @@ class Builder {
     pool_.insert(pool_.end(), right_.begin(), right_.end());
   }
 
+  // Perfect splits (perfect_split.h): each part's box is the exact box of the
+  // triangle inside the child (and inside the reference's box); a part that
+  // is empty is dropped and counted as pruned_box. N_CL counts a reference
+  // that became two.
+  void PerfectSplit(const BuildRef& r, const AABB& left_box, const AABB& right_box) {
+    const Vec3 &a = soup_.a(r.tri), &b = soup_.b(r.tri), &c = soup_.c(r.tri);
+    AABB lb, rb;
+    const bool in_left = ClipTriangleToBox(a, b, c, Intersect(r.box, left_box), &lb);
+    const bool in_right = ClipTriangleToBox(a, b, c, Intersect(r.box, right_box), &rb);
+    if (in_left && in_right) ++counters().clipped;
+    if (!in_left && !in_right) ++counters().pruned_box;
+    if (in_left) {
+      pool_.push_back(BuildRef{lb, r.tri});
+      ++left_count_;
+    }
+    if (in_right) right_.push_back(BuildRef{rb, r.tri});
+  }
+
   void PushClipped(const AABB& clipped, uint32_t tri, const AABB& child, bool left) {
     AABB b = clipped;
     if (config_.use_pruning) {
@@ -142,7 +233,7 @@ class Builder {
     uint32_t count = 0;
     for (size_t i = begin; i < end; ++i) {
       const uint32_t t = pool_[i].tri;
-      if (config_.use_pruning) {
+      if (config_.use_pruning && config_.exact_pruning) {
         const bool overlaps =
             config_.seed_compatible
                 ? TriangleOverlapsBoxFloat(soup_.a(t), soup_.b(t), soup_.c(t), box)
@@ -173,7 +264,10 @@ class Builder {
   std::vector<BuildRef> pool_;
   std::vector<BuildRef> right_;
   size_t left_count_ = 0;
+  const int max_depth_;
+  const bool parallel_;
   BinScratch scratch_;
+  SweepScratch sweep_;
   bool overflow_ = false;
 };
 
@@ -201,8 +295,19 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
     tree.tris.push_back(MakeTriAccel(soup.a(i), soup.b(i), soup.c(i)));
   }
   tree.verts = soup.v;
-  Builder builder(soup, config, &tree);
-  if (absl::Status s = builder.Run(); !s.ok()) return s;
+  const int threads = config.build_threads == 0
+                          ? tbb::this_task_arena::max_concurrency()
+                          : config.build_threads;
+  Builder builder(soup, config, &tree, EffectiveMaxDepth(config, soup.size()), threads > 1);
+  absl::Status status;
+  if (threads > 1) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] { status = builder.Run(); });
+  } else {
+    status = builder.Run();
+  }
+  if (!status.ok()) return status;
+  if (config.collapse) CollapseTree(config, &tree);
   tree.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

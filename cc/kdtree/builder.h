@@ -23,6 +23,10 @@ namespace kdtree {
 //  - node and reference arrays are reserved up front (3x the triangle count,
 //    as in the report); build references live in one pool reused by every
 //    level, so the build does no per-node heap allocation.
+// Beyond the report (config.h): full-SAH cost termination and the depth cap
+// 8 + 1.3 log2 N; the sweep and hybrid split searches; perfect splits; leaf
+// pruning off (box-only); the collapse post-pass; and a parallel build
+// (buildThreads) that writes the same tree as the serial one.
 // Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs.
 absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config);
 

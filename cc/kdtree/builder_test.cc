@@ -1,5 +1,7 @@
 #include "cc/kdtree/builder.h"
 
+#include <cmath>
+#include <cstring>
 #include <set>
 #include <vector>
 
@@ -33,7 +35,7 @@ TEST(Builder, EveryTriangleSitsInALeafThatTouchesIt) {
   for (const TriangleSoup& soup :
        {testing::BumpySphere(3, 5), testing::VoxelGrid(8, 6, 8, 6), testing::ThinSoup(800, 7),
         testing::FlatScene(500, 8)}) {
-    for (const std::string& name : PresetNames()) {
+    for (const std::string& name : AllPresetNames()) {
       absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset(name));
       ASSERT_TRUE(tree.ok()) << tree.status();
       std::vector<int> seen(soup.size(), 0);
@@ -111,6 +113,118 @@ TEST(Builder, RejectsNonFiniteVerticesAndBadConfig) {
   Config bad;
   bad.bins = 0;
   EXPECT_FALSE(BuildKdTree(testing::BumpySphere(1, 1), bad).ok());
+}
+
+TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
+  const TriangleSoup soup = testing::BumpySphere(5, 11);  // 20,480 triangles
+  for (const char* name : {"binning-8", "clipping-pruning", "median-24-8", "sah-binned-32",
+                                   "sah-hybrid", "sah-perfect"}) {
+    Config c = *Preset(name);
+    const KdTree serial = *BuildKdTree(soup, c);
+    c.build_threads = 2;
+    const KdTree parallel = *BuildKdTree(soup, c);
+    ASSERT_GT(serial.nodes.size(), 1000u) << name;
+    ASSERT_EQ(serial.nodes.size(), parallel.nodes.size()) << name;
+    ASSERT_EQ(serial.refs.size(), parallel.refs.size()) << name;
+    EXPECT_EQ(std::memcmp(serial.nodes.data(), parallel.nodes.data(),
+                          serial.nodes.size() * sizeof(KdNode)),
+              0)
+        << name;
+    EXPECT_EQ(std::memcmp(serial.refs.data(), parallel.refs.data(),
+                          serial.refs.size() * sizeof(uint32_t)),
+              0)
+        << name;
+    EXPECT_EQ(serial.counters.clipped, parallel.counters.clipped) << name;
+    EXPECT_EQ(serial.counters.pruned(), parallel.counters.pruned()) << name;
+  }
+}
+
+TEST(Builder, FullSahTerminatesByCost) {
+  const TriangleSoup soup = testing::BumpySphere(3, 5);
+  Config c = *Preset("sah-binned-32");
+  c.traversal_cost = 1e9;  // no split can pay for its traversal step
+  EXPECT_EQ(BuildKdTree(soup, c)->nodes.size(), 1u);
+  c.traversal_cost = 15;
+  const KdTree sah = *BuildKdTree(soup, c);
+  EXPECT_GT(sah.nodes.size(), 1u);
+  // Without cost termination the same splits go on to maxLeafSize / depth.
+  c.full_sah = false;
+  EXPECT_GT(BuildKdTree(soup, c)->nodes.size(), sah.nodes.size());
+}
+
+TEST(Builder, AutoDepthCapIs8Plus1Point3Log2N) {
+  // 16 triangles stacked at one spot: every split sends all of them to both
+  // sides, and nothing but the cap stops the recursion.
+  TriangleSoup soup;
+  for (int i = 0; i < 16; ++i) soup.Add({0, 0, 0}, {1, 0, 0}, {0, 1, float(i % 2) * 1e-3f});
+  Config c = *Preset("median-24-8");
+  c.max_leaf_size = 0;
+  c.auto_depth = true;
+  const TreeStats s = ComputeStats(*BuildKdTree(soup, c));
+  EXPECT_EQ(s.max_depth, static_cast<int>(8 + 1.3 * std::log2(16.0)));  // 13
+}
+
+TEST(Builder, CollapseRemovesSplitsThatDoNotPayOffAndEmptySiblings) {
+  const TriangleSoup soup = testing::ThinSoup(3000, 4);
+  Config c = *Preset("clipping-pruning");
+  const TreeStats plain = ComputeStats(*BuildKdTree(soup, c));
+  c.collapse = true;
+  const KdTree collapsed = *BuildKdTree(soup, c);
+  const TreeStats s = ComputeStats(collapsed);
+  EXPECT_LT(s.inner, plain.inner);
+  EXPECT_LT(s.sah_cost, plain.sah_cost);
+  // No inner node has two empty leaves as children.
+  int empty_pairs = 0;
+  for (size_t i = 0; i < collapsed.nodes.size(); ++i) {
+    const KdNode& n = collapsed.nodes[i];
+    if (n.is_leaf()) continue;
+    const KdNode& l = collapsed.nodes[i + 1];
+    const KdNode& r = collapsed.nodes[n.index()];
+    empty_pairs += l.is_leaf() && r.is_leaf() && collapsed.LeafCount(l) == 0 &&
+                   collapsed.LeafCount(r) == 0;
+  }
+  EXPECT_EQ(empty_pairs, 0);
+}
+
+TEST(Builder, BoxOnlyPruningKeepsLeafTriangles) {
+  const TriangleSoup soup = testing::BumpySphere(4, 9);
+  Config c = *Preset("clipping-pruning");
+  const KdTree exact = *BuildKdTree(soup, c);
+  c.exact_pruning = false;
+  const KdTree box_only = *BuildKdTree(soup, c);
+  EXPECT_GT(exact.counters.pruned_leaf, 0u);
+  EXPECT_EQ(box_only.counters.pruned_leaf, 0u);
+  EXPECT_EQ(box_only.nodes.size(), exact.nodes.size());
+  EXPECT_GT(ComputeStats(box_only).leaf_refs, ComputeStats(exact).leaf_refs);
+}
+
+// Leaf references whose triangle misses the leaf box (conservative test).
+int MissingLeafRefs(const KdTree& tree, const TriangleSoup& soup, uint32_t index, const AABB& box) {
+  const KdNode& n = tree.nodes[index];
+  if (!n.is_leaf()) {
+    return MissingLeafRefs(tree, soup, index + 1, box.LeftOf(n.axis(), n.split)) +
+           MissingLeafRefs(tree, soup, n.index(), box.RightOf(n.axis(), n.split));
+  }
+  int missing = 0;
+  for (uint32_t i = 0; i < tree.LeafCount(n); ++i) {
+    const uint32_t t = tree.LeafBegin(n)[i];
+    missing += !TriangleOverlapsBoxConservative(soup.a(t), soup.b(t), soup.c(t), box);
+  }
+  return missing;
+}
+
+TEST(Builder, PerfectSplitsLeaveNoTriangleThatMissesItsLeaf) {
+  // Without the leaf test (box-only pruning), box clipping leaves triangles
+  // whose box touches a leaf but whose surface does not; perfect splits
+  // clip to the child box exactly and leave none.
+  const TriangleSoup soup = testing::BumpySphere(4, 9);
+  Config c = *Preset("sah-hybrid");
+  c.exact_pruning = false;
+  const KdTree box = *BuildKdTree(soup, c);
+  c.perfect_splits = true;
+  const KdTree perfect = *BuildKdTree(soup, c);
+  EXPECT_GT(MissingLeafRefs(box, soup, 0, box.bounds), 0);
+  EXPECT_EQ(MissingLeafRefs(perfect, soup, 0, perfect.bounds), 0);
 }
 
 TEST(Builder, EmptySceneIsOneEmptyLeaf) {

@@ -17,24 +17,76 @@ absl::Status Config::Validate() const {
   if (use_binning && (bins < 2 || bins > 65536)) {
     return absl::InvalidArgumentError(absl::StrCat("bins must be in [2, 65536], got ", bins));
   }
+  if (split_method != SplitMethod::kBinned && !use_binning) {
+    return absl::InvalidArgumentError("splitMethod sweep/hybrid needs useBinning ON");
+  }
+  if (hybrid_bins < 2 || hybrid_bins > 65536 || hybrid_threshold < 0) {
+    return absl::InvalidArgumentError(absl::StrCat("hybridBins must be in [2, 65536] and ",
+                                                   "hybridThreshold >= 0, got ", hybrid_bins,
+                                                   ", ", hybrid_threshold));
+  }
+  if (perfect_splits && !use_clipping) {
+    return absl::InvalidArgumentError("perfectSplits needs useClipping ON");
+  }
+  if (perfect_splits && seed_compatible) {
+    return absl::InvalidArgumentError("perfectSplits is not part of the seed-compatible mode");
+  }
+  if (!(traversal_cost >= 0) || !(intersection_cost > 0) || !(empty_bonus > 0) ||
+      empty_bonus > 1) {
+    return absl::InvalidArgumentError("SAH constants: K_T >= 0, K_I > 0, 0 < bonus <= 1");
+  }
+  if (build_threads < 0) {
+    return absl::InvalidArgumentError(absl::StrCat("buildThreads must be >= 0, got ", build_threads));
+  }
   return absl::OkStatus();
 }
 
 std::string Config::ToEnvironment() const {
   auto on = [](bool b) { return b ? "ON" : "OFF"; };
-  return absl::StrFormat(
+  // Options beyond the report are written only when they differ from the
+  // defaults, so that the report's presets print exactly as before.
+  const Config d;
+  std::string extra;
+  if (full_sah != d.full_sah) absl::StrAppend(&extra, "    fullSah ", on(full_sah), "\n");
+  if (auto_depth != d.auto_depth) absl::StrAppend(&extra, "    autoDepth ", on(auto_depth), "\n");
+  if (split_method != d.split_method) {
+    absl::StrAppend(&extra, "    splitMethod ", SplitMethodName(split_method), "\n");
+  }
+  if (hybrid_bins != d.hybrid_bins) absl::StrAppend(&extra, "    hybridBins ", hybrid_bins, "\n");
+  if (hybrid_threshold != d.hybrid_threshold) {
+    absl::StrAppend(&extra, "    hybridThreshold ", hybrid_threshold, "\n");
+  }
+  if (perfect_splits != d.perfect_splits) {
+    absl::StrAppend(&extra, "    perfectSplits ", on(perfect_splits), "\n");
+  }
+  if (exact_pruning != d.exact_pruning) {
+    absl::StrAppend(&extra, "    exactPruning ", on(exact_pruning), "\n");
+  }
+  if (collapse != d.collapse) absl::StrAppend(&extra, "    collapse ", on(collapse), "\n");
+  if (build_threads != d.build_threads) {
+    absl::StrAppend(&extra, "    buildThreads ", build_threads, "\n");
+  }
+  std::string env = absl::StrFormat(
       "RTCore {\n    castShadowRays %s\n}\n\nKDTree {\n    maxDepth %d\n    maxLeafSize %d\n"
       "    Binning {\n        useBinning %s\n        useDrivingAxis %s\n        bins %d\n    }\n"
       "    useClipping %s\n    usePruning %s\n    seedCompatible %s\n}\n",
       on(cast_shadow_rays), max_depth, max_leaf_size, on(use_binning), on(use_driving_axis), bins,
       on(use_clipping), on(use_pruning), on(seed_compatible));
+  env.insert(env.size() - 2, extra);  // before the KDTree block's closing "}\n"
+  return env;
 }
 
 bool Config::operator==(const Config& o) const {
   return max_depth == o.max_depth && max_leaf_size == o.max_leaf_size &&
          use_binning == o.use_binning && use_driving_axis == o.use_driving_axis &&
          bins == o.bins && use_clipping == o.use_clipping && use_pruning == o.use_pruning &&
-         cast_shadow_rays == o.cast_shadow_rays && seed_compatible == o.seed_compatible;
+         cast_shadow_rays == o.cast_shadow_rays && seed_compatible == o.seed_compatible &&
+         full_sah == o.full_sah && traversal_cost == o.traversal_cost &&
+         intersection_cost == o.intersection_cost && empty_bonus == o.empty_bonus &&
+         auto_depth == o.auto_depth && split_method == o.split_method &&
+         hybrid_bins == o.hybrid_bins && hybrid_threshold == o.hybrid_threshold &&
+         perfect_splits == o.perfect_splits && exact_pruning == o.exact_pruning &&
+         collapse == o.collapse && build_threads == o.build_threads;
 }
 
 const std::vector<std::string>& PresetNames() {
@@ -87,6 +139,26 @@ absl::StatusOr<Config> Preset(const std::string& name) {
     c.use_clipping = c.use_pruning = true;
     return c;
   }
+  if (name.rfind("sah-", 0) == 0) {
+    // Beyond the report: the full SAH of Wald & Havran 2006 (config.h).
+    Config s = Binning(32, false);
+    s.max_leaf_size = 1;
+    s.full_sah = true;
+    s.auto_depth = true;
+    if (name == "sah-binned-32") return s;
+    s.use_clipping = s.use_pruning = true;
+    if (name == "sah-sweep") {
+      s.split_method = Config::SplitMethod::kSweep;
+      return s;
+    }
+    s.split_method = Config::SplitMethod::kHybrid;
+    if (name == "sah-hybrid") return s;
+    if (name == "sah-perfect") {
+      s.perfect_splits = true;
+      s.collapse = true;
+      return s;
+    }
+  }
   if (name == "pruning-seed") {
     Config p = Binning(32, false);
     p.use_pruning = true;
@@ -96,7 +168,32 @@ absl::StatusOr<Config> Preset(const std::string& name) {
   return absl::NotFoundError(absl::StrCat("unknown preset '", name, "'; known: ",
                                           "median-16-2, median-24-2, median-24-8, ",
                                           "binning-8-driving, binning-8, binning-32, clipping, ",
-                                          "pruning, clipping-pruning, pruning-seed"));
+                                          "pruning, clipping-pruning, pruning-seed, sah-binned-32, ",
+                                          "sah-sweep, sah-hybrid, sah-perfect"));
+}
+
+const std::vector<std::string>& ExtraPresetNames() {
+  static const auto* names =
+      new std::vector<std::string>{"sah-binned-32", "sah-sweep", "sah-hybrid", "sah-perfect"};
+  return *names;
+}
+
+std::vector<std::string> AllPresetNames() {
+  std::vector<std::string> all = PresetNames();
+  all.insert(all.end(), ExtraPresetNames().begin(), ExtraPresetNames().end());
+  return all;
+}
+
+const char* SplitMethodName(Config::SplitMethod m) {
+  switch (m) {
+    case Config::SplitMethod::kSweep:
+      return "sweep";
+    case Config::SplitMethod::kHybrid:
+      return "hybrid";
+    case Config::SplitMethod::kBinned:
+      break;
+  }
+  return "binned";
 }
 
 }  // namespace kdtree

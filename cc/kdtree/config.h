@@ -44,6 +44,49 @@ struct Config {
   // conservative padding of clipped boxes and of the leaf overlap test.
   bool seed_compatible = false;
 
+  // ---- Beyond the report (defaults off: the nine presets are unchanged). ----
+  // Environment-file keys (KDTree block) in brackets.
+  //
+  // [fullSah] The full SAH of Wald & Havran, "On building fast kd-trees for ray
+  // tracing, and on doing that in O(N log N)", IEEE RT 2006, section 3:
+  //   C_split = K_T + lambda * K_I * (SA_L N_L + SA_R N_R) / SA,
+  //   lambda = empty_bonus (0.8) when N_L or N_R is 0, else 1; C_leaf = K_I N,
+  // and a node becomes a leaf when C_split >= C_leaf (termination by cost;
+  // maxLeafSize and the depth cap still apply). Off: the report's relaxed
+  // SA_L N_L + SA_R N_R and no cost termination.
+  bool full_sah = false;
+  double traversal_cost = 15.0;    // K_T (Wald & Havran 2006)
+  double intersection_cost = 20.0; // K_I (Wald & Havran 2006)
+  double empty_bonus = 0.8;        // lambda for a split with an empty side
+  // [autoDepth] Depth cap 8 + 1.3 log2 N (Havran's thesis rule, used by
+  // Wald & Havran 2006) instead of maxDepth; N = the scene's triangle count.
+  bool auto_depth = false;
+  // [splitMethod binned|sweep|hybrid] How candidate planes are found:
+  //  binned: the report's binning (useBinning/useDrivingAxis/bins);
+  //  sweep:  every event of every axis, exact (sweep_sah.h, Wald & Havran 2006);
+  //  hybrid: hybrid_bins bins on all axes for nodes of more than
+  //          hybrid_threshold references, the exact sweep below (hybrid_sah.h).
+  // sweep and hybrid need useBinning ON (they replace the binned strategy).
+  enum class SplitMethod { kBinned, kSweep, kHybrid };
+  SplitMethod split_method = SplitMethod::kBinned;
+  int hybrid_bins = 128;           // [hybridBins]
+  int hybrid_threshold = 4096;     // [hybridThreshold]
+  // [perfectSplits] With useClipping: a straddling triangle is clipped exactly
+  // to its child's box (Sutherland-Hodgman, perfect_split.h; Havran's "perfect
+  // splits") instead of the report's box clipping at the plane.
+  bool perfect_splits = false;
+  // [exactPruning] With usePruning: the separating-axis test of each leaf's
+  // triangles (the report's pruning). OFF = box-only pruning: only clipped
+  // boxes that miss their child are dropped.
+  bool exact_pruning = true;
+  // [collapse] After the build, splits that do not pay off under the full
+  // SAH (K_T, K_I above) are removed and empty sibling leaves merged
+  // (collapse.h).
+  bool collapse = false;
+  // [buildThreads] Build threads (oneTBB): 1 = serial, 0 = all cores. The tree
+  // is the same for every value (parallel_build.h).
+  int build_threads = 1;
+
   absl::Status Validate() const;
   // The environment-file form of these options (parsable by ParseEnvironment).
   std::string ToEnvironment() const;
@@ -59,6 +102,17 @@ const std::vector<std::string>& PresetNames();
 // seed-compatible variant "pruning-seed" is built on binning-32 (all axes), as
 // the report's numbers show it actually was (../shared/notes/seed-facts.md).
 absl::StatusOr<Config> Preset(const std::string& name);
+
+// Presets beyond the report (accepted by Preset(); not among PresetNames()):
+// "sah-binned-32": full SAH, cost termination, auto depth, 32 bins on x, y, z;
+// "sah-sweep": full SAH with the exact event sweep, clipping and pruning;
+// "sah-hybrid": hybrid binning/sweep, clipping and pruning;
+// "sah-perfect": hybrid with perfect splits, pruning and collapse.
+const std::vector<std::string>& ExtraPresetNames();
+// PresetNames() followed by ExtraPresetNames().
+std::vector<std::string> AllPresetNames();
+// "binned", "sweep", "hybrid".
+const char* SplitMethodName(Config::SplitMethod m);
 
 }  // namespace kdtree
 

@@ -131,6 +131,33 @@ class Parser {
         s = Bool(value, &c.use_pruning);
       } else if (block == "KDTree" && key.text == "seedCompatible") {
         s = Bool(value, &c.seed_compatible);
+      } else if (block == "KDTree" && key.text == "fullSah") {
+        s = Bool(value, &c.full_sah);
+      } else if (block == "KDTree" && key.text == "autoDepth") {
+        s = Bool(value, &c.auto_depth);
+      } else if (block == "KDTree" && key.text == "splitMethod") {
+        const std::string m = absl::AsciiStrToLower(value.text);
+        if (m == "binned") {
+          c.split_method = Config::SplitMethod::kBinned;
+        } else if (m == "sweep") {
+          c.split_method = Config::SplitMethod::kSweep;
+        } else if (m == "hybrid") {
+          c.split_method = Config::SplitMethod::kHybrid;
+        } else {
+          s = Error(value.line, "expected binned, sweep or hybrid, got '" + value.text + "'");
+        }
+      } else if (block == "KDTree" && key.text == "hybridBins") {
+        s = Int(value, &c.hybrid_bins);
+      } else if (block == "KDTree" && key.text == "hybridThreshold") {
+        s = Int(value, &c.hybrid_threshold);
+      } else if (block == "KDTree" && key.text == "perfectSplits") {
+        s = Bool(value, &c.perfect_splits);
+      } else if (block == "KDTree" && key.text == "exactPruning") {
+        s = Bool(value, &c.exact_pruning);
+      } else if (block == "KDTree" && key.text == "collapse") {
+        s = Bool(value, &c.collapse);
+      } else if (block == "KDTree" && key.text == "buildThreads") {
+        s = Int(value, &c.build_threads);
       } else if (block == "Binning" && (key.text == "useBinning" || key.text == "useBining")) {
         s = Bool(value, &c.use_binning);  // "useBining" is the report's spelling in its prose
       } else if (block == "Binning" && key.text == "useDrivingAxis") {

@@ -192,7 +192,7 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
 INSTANTIATE_TEST_SUITE_P(
     AllPresets, VsBruteForce,
     ::testing::Combine(::testing::Values("bunny", "sphere", "voxels", "thin", "flat", "tiny"),
-                       ::testing::ValuesIn(PresetNames()),
+                       ::testing::ValuesIn(AllPresetNames()),
                        ::testing::Values(IntersectionMode::kWatertight, IntersectionMode::kFast)),
     [](const ::testing::TestParamInfo<VsBruteForce::ParamType>& info) {
       std::string name = absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param), "_",
