@@ -10,6 +10,7 @@
 #include "cc/kdtree/binned_sah.h"
 #include "cc/kdtree/build_ref.h"
 #include "cc/kdtree/clipping.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/collapse.h"
 #include "cc/kdtree/hybrid_sah.h"
 #include "cc/kdtree/median_split.h"
@@ -308,6 +309,7 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   }
   if (!status.ok()) return status;
   if (config.collapse) CollapseTree(config, &tree);
+  LayoutLeafTriangles(&tree);  // triangle data in leaf order, for traversal
   tree.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

@@ -6,6 +6,9 @@
 #include "cc/geometry/intersect.h"
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
+#include "cc/kdtree/leaf_layout.h"
+
+#include <immintrin.h>
 
 namespace kdtree {
 
@@ -50,11 +53,15 @@ struct StackEntry {
 
 // The ray's largest distance, in t, to the scene box along its dominant axis:
 // no triangle vertex is deeper, so it scales every triangle's t error.
+// (Inputs are finite here, so a plain comparison equals std::fmax, without
+// the libm call.)
+inline float Max(float a, float b) { return a > b ? a : b; }
+
 float DepthScale(const Ray& ray, const AABB& box) {
   const float ax = std::fabs(ray.dir.x), ay = std::fabs(ray.dir.y), az = std::fabs(ray.dir.z);
   const int k = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
   const float o = ray.origin[k];
-  const float depth = std::fmax(std::fabs(box.lo[k] - o), std::fabs(box.hi[k] - o));
+  const float depth = Max(std::fabs(box.lo[k] - o), std::fabs(box.hi[k] - o));
   return depth / std::fabs(ray.dir[k]);
 }
 
@@ -62,8 +69,7 @@ float DepthScale(const Ray& ray, const AABB& box) {
 float Reach(const Ray& ray, const AABB& box) {
   float r = 0;
   for (int k = 0; k < 3; ++k) {
-    r = std::fmax(r, std::fmax(std::fabs(box.lo[k] - ray.origin[k]),
-                               std::fabs(box.hi[k] - ray.origin[k])));
+    r = Max(r, Max(std::fabs(box.lo[k] - ray.origin[k]), std::fabs(box.hi[k] - ray.origin[k])));
   }
   return r;
 }
@@ -92,13 +98,61 @@ bool ClipPadded(const Ray& ray, const AABB& box, float delta, const float inv[3]
   return true;
 }
 
-template <bool kAnyHit, bool kCount, IntersectionMode kMode>
+// True when the watertight test certainly rejects the triangle: its three
+// edge functions have definitely different signs. The very float expressions
+// of IntersectTriangleWatertight (watertight.h), so false here means that test
+// decides exactly as before.
+inline bool WatertightRejects(const WatertightRay& r, const Vec3& a, const Vec3& b,
+                              const Vec3& c) {
+  using watertight_internal::Component;
+  const float az = Component(a, r.kz) - r.oz, bz = Component(b, r.kz) - r.oz,
+              cz = Component(c, r.kz) - r.oz;
+  const float x0 = (Component(a, r.kx) - r.ox) - r.sx * az;
+  const float x1 = (Component(b, r.kx) - r.ox) - r.sx * bz;
+  const float x2 = (Component(c, r.kx) - r.ox) - r.sx * cz;
+  const float y0 = (Component(a, r.ky) - r.oy) - r.sy * az;
+  const float y1 = (Component(b, r.ky) - r.oy) - r.sy * bz;
+  const float y2 = (Component(c, r.ky) - r.oy) - r.sy * cz;
+  const float e0 = x2 * y1 - y2 * x1;
+  const float e1 = x0 * y2 - y0 * x2;
+  const float e2 = x1 * y0 - y1 * x0;
+  return (e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f);
+}
+
+// WatertightRejects for the 4 triangles of a packet (leaf_layout.h) at once:
+// bit l set when lane l is certainly rejected. SSE single precision performs
+// the very same IEEE operations in the same order as the scalar code (no
+// contraction: -ffp-contract=off), so each lane decides exactly as
+// WatertightRejects would.
+inline int RejectMask4(const WatertightRay& r, const float* packet) {
+  const __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
+  const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
+  __m128 x[3], y[3];
+  for (int v = 0; v < 3; ++v) {
+    const float* p = packet + 3 * v * kPacketLanes;
+    const __m128 z = _mm_sub_ps(_mm_loadu_ps(p + r.kz * kPacketLanes), oz);
+    x[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.kx * kPacketLanes), ox), _mm_mul_ps(sx, z));
+    y[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.ky * kPacketLanes), oy), _mm_mul_ps(sy, z));
+  }
+  const __m128 e0 = _mm_sub_ps(_mm_mul_ps(x[2], y[1]), _mm_mul_ps(y[2], x[1]));
+  const __m128 e1 = _mm_sub_ps(_mm_mul_ps(x[0], y[2]), _mm_mul_ps(y[0], x[2]));
+  const __m128 e2 = _mm_sub_ps(_mm_mul_ps(x[1], y[0]), _mm_mul_ps(y[1], x[0]));
+  const __m128 zero = _mm_setzero_ps();
+  const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
+                               _mm_cmplt_ps(e2, zero));
+  const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
+                               _mm_cmpgt_ps(e2, zero));
+  return _mm_movemask_ps(_mm_and_ps(neg, pos));
+}
+
+template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox>
 Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) {
   Hit best;
   if (kCount) ++counters->rays;
   Ray ray = input;
   if (!SanitizeRay(&ray) || tree.nodes.empty() || !tree.bounds.Valid()) return best;
   assert(kMode != IntersectionMode::kWatertight || tree.verts.size() == 3 * tree.tris.size());
+  const float org[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   const float inv[3] = {1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
   // Spatial tolerance: a triangle test may accept a point up to a few ulps of
   // the origin-to-scene distance outside the triangle; every plane is treated
@@ -112,19 +166,26 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
   const float slack = kHitSlack * DepthScale(ray, tree.bounds);
   WatertightRay wray{};
   if (kMode == IntersectionMode::kWatertight) wray = MakeWatertightRay(ray);
+  // Child order per axis: near = left + near_is_right ? (right - left) : 0.
   const bool negative[3] = {std::signbit(ray.dir.x), std::signbit(ray.dir.y),
                             std::signbit(ray.dir.z)};
+  uint32_t mailbox[kMailboxSlots];
+  if (kMailbox) {
+    for (int i = 0; i < kMailboxSlots; ++i) mailbox[i] = kNoHit;
+  }
   StackEntry stack[kMaxTraversalStack];
   int top = 0;
   const KdNode* nodes = tree.nodes.data();
+  const uint32_t* refs = tree.refs.data();
   const Vec3* verts = tree.verts.data();
+  const float* soa = kLeafOrdered ? tree.leaf_soa.data() : nullptr;
   uint32_t index = 0;
   for (;;) {
     const KdNode* node = &nodes[index];
     while (!node->is_leaf()) {
       if (kCount) ++counters->inner_visits;
       const int axis = node->axis();
-      const float t_split = (node->split - ray.origin[axis]) * inv[axis];
+      const float t_split = (node->split - org[axis]) * inv[axis];
       const uint32_t left = index + 1, right = node->index();
       const uint32_t near = negative[axis] ? right : left;
       const uint32_t far = negative[axis] ? left : right;
@@ -136,7 +197,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
       } else if (t_split < t_entry - t_tol) {
         index = far;
       } else if (std::fabs(t_split) < INFINITY) {
-        const float ts = std::fmin(std::fmax(t_split, t_entry), t_exit);
+        // Clamp to [t_entry, t_exit] (no NaN here: plain comparisons).
+        const float lo = t_split < t_entry ? t_entry : t_split;
+        const float ts = lo > t_exit ? t_exit : lo;
         assert(top < kMaxTraversalStack);
         stack[top++] = StackEntry{far, ts - t_tol, t_exit};
         index = near;
@@ -145,7 +208,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
         // Parallel to the plane (t_split infinite) or in it (NaN): both
         // children whole when the origin is within delta of the plane, else
         // the side the origin is on.
-        const float gap = node->split - ray.origin[axis];
+        const float gap = node->split - org[axis];
         if (std::fabs(gap) <= delta) {
           assert(top < kMaxTraversalStack);
           stack[top++] = StackEntry{far, t_entry, t_exit};
@@ -157,25 +220,69 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
       node = &nodes[index];
     }
     if (kCount) ++counters->leaf_visits;
-    const uint32_t count = tree.LeafCount(*node);
-    const uint32_t* tris = tree.LeafBegin(*node);
-    for (uint32_t i = 0; i < count; ++i) {
-      if (kCount) ++counters->triangle_tests;
-      const uint32_t tri = tris[i];
-      float t, u, v;
-      bool hit;
-      if (kMode == IntersectionMode::kWatertight) {
-        const Vec3* p = verts + 3 * static_cast<size_t>(tri);
-        hit = IntersectTriangleWatertight(wray, p[0], p[1], p[2], ray.tmin, best.t, &t, &u, &v);
-      } else {
-        hit = IntersectTriangle(ray, tree.tris[tri], ray.tmin, best.t, &t, &u, &v);
+    const uint32_t list = node->index();
+    const uint32_t count = refs[list];
+    const uint32_t* tris = refs + list + 1;
+    if (kLeafOrdered) {
+      const float* packet = soa + static_cast<size_t>(tree.leaf_packet[index]) * kPacketFloats;
+      for (uint32_t base = 0; base < count; base += kPacketLanes, packet += kPacketFloats) {
+        const uint32_t lanes = count - base < kPacketLanes ? count - base : kPacketLanes;
+        int live = (1 << lanes) - 1;
+        if (kMailbox) {
+          for (uint32_t l = 0; l < lanes; ++l) {
+            uint32_t& slot = mailbox[tris[base + l] & (kMailboxSlots - 1)];
+            if (slot == tris[base + l]) {
+              live &= ~(1 << l);
+            } else {
+              slot = tris[base + l];
+            }
+          }
+        }
+        if (kCount) counters->triangle_tests += __builtin_popcount(live);
+        live &= ~RejectMask4(wray, packet);
+        while (live != 0) {
+          const int l = __builtin_ctz(live);
+          live &= live - 1;
+          const uint32_t tri = tris[base + l];
+          const Vec3 a(packet[0 * 4 + l], packet[1 * 4 + l], packet[2 * 4 + l]);
+          const Vec3 b(packet[3 * 4 + l], packet[4 * 4 + l], packet[5 * 4 + l]);
+          const Vec3 c(packet[6 * 4 + l], packet[7 * 4 + l], packet[8 * 4 + l]);
+          float t, u, v;
+          if (IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v) &&
+              Closer(t, tri, best)) {
+            best.tri = tri;
+            best.t = t;
+            best.u = u;
+            best.v = v;
+            if (kAnyHit) return best;
+          }
+        }
       }
-      if (hit && Closer(t, tri, best)) {
-        best.tri = tri;
-        best.t = t;
-        best.u = u;
-        best.v = v;
-        if (kAnyHit) return best;
+    } else {
+      for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t tri = tris[i];
+        if (kMailbox) {
+          uint32_t& slot = mailbox[tri & (kMailboxSlots - 1)];
+          if (slot == tri) continue;
+          slot = tri;
+        }
+        if (kCount) ++counters->triangle_tests;
+        float t, u, v;
+        bool hit;
+        if (kMode == IntersectionMode::kWatertight) {
+          const Vec3* p = verts + 3 * static_cast<size_t>(tri);
+          if (WatertightRejects(wray, p[0], p[1], p[2])) continue;
+          hit = IntersectTriangleWatertight(wray, p[0], p[1], p[2], ray.tmin, best.t, &t, &u, &v);
+        } else {
+          hit = IntersectTriangle(ray, tree.tris[tri], ray.tmin, best.t, &t, &u, &v);
+        }
+        if (hit && Closer(t, tri, best)) {
+          best.tri = tri;
+          best.t = t;
+          best.u = u;
+          best.v = v;
+          if (kAnyHit) return best;
+        }
       }
     }
     // Next node. A node that starts beyond the best hit (with the slack for
@@ -195,46 +302,77 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
   }
 }
 
+template <bool kAnyHit, bool kCount, IntersectionMode kMode>
+Hit DispatchLayout(const KdTree& tree, const Ray& ray, bool mailbox, TraversalCounters* counters) {
+  // The leaf-ordered layout is used when present and complete (watertight mode
+  // reads vertices; the fast mode reads TriAccel by index either way).
+  const bool ordered = kMode == IntersectionMode::kWatertight && HasLeafLayout(tree);
+  if (ordered) {
+    return mailbox ? Traverse<kAnyHit, kCount, kMode, true, true>(tree, ray, counters)
+                   : Traverse<kAnyHit, kCount, kMode, true, false>(tree, ray, counters);
+  }
+  return mailbox ? Traverse<kAnyHit, kCount, kMode, false, true>(tree, ray, counters)
+                 : Traverse<kAnyHit, kCount, kMode, false, false>(tree, ray, counters);
+}
+
 template <bool kAnyHit>
 Hit Dispatch(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
-             IntersectionMode mode) {
-  if (mode == IntersectionMode::kWatertight) {
+             const TraversalOptions& options) {
+  if (options.mode == IntersectionMode::kWatertight) {
     return counters != nullptr
-               ? Traverse<kAnyHit, true, IntersectionMode::kWatertight>(tree, ray, counters)
-               : Traverse<kAnyHit, false, IntersectionMode::kWatertight>(tree, ray, nullptr);
+               ? DispatchLayout<kAnyHit, true, IntersectionMode::kWatertight>(
+                     tree, ray, options.mailbox, counters)
+               : DispatchLayout<kAnyHit, false, IntersectionMode::kWatertight>(
+                     tree, ray, options.mailbox, nullptr);
   }
   return counters != nullptr
-             ? Traverse<kAnyHit, true, IntersectionMode::kFast>(tree, ray, counters)
-             : Traverse<kAnyHit, false, IntersectionMode::kFast>(tree, ray, nullptr);
+             ? DispatchLayout<kAnyHit, true, IntersectionMode::kFast>(tree, ray, options.mailbox,
+                                                                     counters)
+             : DispatchLayout<kAnyHit, false, IntersectionMode::kFast>(tree, ray, options.mailbox,
+                                                                      nullptr);
+}
+
+TraversalOptions WithMode(IntersectionMode mode) {
+  TraversalOptions o;
+  o.mode = mode;
+  return o;
 }
 
 }  // namespace
 
 Hit Intersect(const KdTree& tree, const Ray& ray) {
-  return Traverse<false, false, IntersectionMode::kWatertight>(tree, ray, nullptr);
+  return Dispatch<false>(tree, ray, nullptr, TraversalOptions());
 }
 Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters) {
-  return Traverse<false, true, IntersectionMode::kWatertight>(tree, ray, counters);
+  return Dispatch<false>(tree, ray, counters, TraversalOptions());
 }
 Hit Intersect(const KdTree& tree, const Ray& ray, IntersectionMode mode) {
-  return Dispatch<false>(tree, ray, nullptr, mode);
+  return Dispatch<false>(tree, ray, nullptr, WithMode(mode));
 }
 Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
               IntersectionMode mode) {
-  return Dispatch<false>(tree, ray, counters, mode);
+  return Dispatch<false>(tree, ray, counters, WithMode(mode));
+}
+Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+              TraversalCounters* counters) {
+  return Dispatch<false>(tree, ray, counters, options);
 }
 bool Occluded(const KdTree& tree, const Ray& ray) {
-  return Traverse<true, false, IntersectionMode::kWatertight>(tree, ray, nullptr).hit();
+  return Dispatch<true>(tree, ray, nullptr, TraversalOptions()).hit();
 }
 bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters) {
-  return Traverse<true, true, IntersectionMode::kWatertight>(tree, ray, counters).hit();
+  return Dispatch<true>(tree, ray, counters, TraversalOptions()).hit();
 }
 bool Occluded(const KdTree& tree, const Ray& ray, IntersectionMode mode) {
-  return Dispatch<true>(tree, ray, nullptr, mode).hit();
+  return Dispatch<true>(tree, ray, nullptr, WithMode(mode)).hit();
 }
 bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
               IntersectionMode mode) {
-  return Dispatch<true>(tree, ray, counters, mode).hit();
+  return Dispatch<true>(tree, ray, counters, WithMode(mode)).hit();
+}
+bool Occluded(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+              TraversalCounters* counters) {
+  return Dispatch<true>(tree, ray, counters, options).hit();
 }
 
 }  // namespace kdtree

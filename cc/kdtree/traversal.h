@@ -45,6 +45,22 @@
 //
 // Per-ray counters (N_IT: triangle tests, N_TR: inner nodes visited) and the
 // mode are template parameters, so the fast path carries no counting code.
+//
+// Speed (none of it changes a result):
+//  - Leaves read their triangles' vertices in leaf order, in packets of 4
+//    (KdTree::leaf_soa, cc/kdtree/leaf_layout.h; the builder fills them) when
+//    the tree has them, else from KdTree::verts by index.
+//  - The common rejection of the watertight test (edge functions of definitely
+//    different signs, the same float expressions as watertight.h) runs first,
+//    on 4 triangles at once (SSE) with the packets, else inlined per triangle;
+//    only triangles that pass it run the full test.
+//  - Optional mailboxing (TraversalOptions::mailbox; Amanatides & Woo, "A fast
+//    voxel traversal algorithm for ray tracing", Eurographics 1987; Havran's
+//    thesis, 2000, section 5.5): a triangle that clipping put in several leaves
+//    is tested once per ray. A small direct-mapped table of the last tested
+//    indices (kMailboxSlots, indexed by tri mod size) per ray; a second test of
+//    a triangle could only repeat the first one's answer with a tighter best
+//    hit, so skipping it is exact. N_IT then counts the tests really made.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
@@ -69,6 +85,14 @@ struct TraversalCounters {
   }
 };
 
+// Options of one query. Defaults: the report's traversal (no mailbox),
+// watertight test.
+struct TraversalOptions {
+  IntersectionMode mode = IntersectionMode::kWatertight;
+  bool mailbox = false;
+};
+inline constexpr int kMailboxSlots = 8;
+
 // Deepest stack the traversal needs is the tree depth; Config::Validate caps
 // maxDepth at 60.
 inline constexpr int kMaxTraversalStack = 64;
@@ -90,6 +114,12 @@ bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters);
 bool Occluded(const KdTree& tree, const Ray& ray, IntersectionMode mode);
 bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
               IntersectionMode mode);
+
+// Closest hit / any hit with the options given; `counters` may be null.
+Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+              TraversalCounters* counters = nullptr);
+bool Occluded(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+              TraversalCounters* counters = nullptr);
 
 // The ray's interval [*t0, *t1] inside box, clipped to [ray.tmin, ray.tmax];
 // false when it misses. Handles zero direction components and NaN.

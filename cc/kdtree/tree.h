@@ -59,6 +59,12 @@ struct KdTree {
   // watertight test (cc/geometry/watertight.h) needs the exact shared vertices,
   // which v0 + e1 of TriAccel does not reproduce.
   std::vector<Vec3> verts;
+  // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
+  // vertices in packets of 4 triangles (structure of arrays, 36 floats per
+  // packet) in leaf_soa; the leaf at nodes[i] starts at packet leaf_packet[i].
+  // Empty: traversal reads `verts` by index.
+  std::vector<float> leaf_soa;
+  std::vector<uint32_t> leaf_packet;
   BuildCounters counters;
   double build_seconds = 0;     // T_B: triangles in memory to traversable tree
 

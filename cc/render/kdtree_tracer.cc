@@ -4,8 +4,12 @@
 
 namespace kdtree {
 
-Hit KdTreeTracer::Intersect(const Ray& ray) const { return ::kdtree::Intersect(tree_, ray); }
+Hit KdTreeTracer::Intersect(const Ray& ray) const {
+  return ::kdtree::Intersect(tree_, ray, options_);
+}
 
-bool KdTreeTracer::Occluded(const Ray& ray) const { return ::kdtree::Occluded(tree_, ray); }
+bool KdTreeTracer::Occluded(const Ray& ray) const {
+  return ::kdtree::Occluded(tree_, ray, options_);
+}
 
 }  // namespace kdtree

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/traversal.h"
 #include "cc/kdtree/tree.h"
 #include "cc/render/tracer.h"
 
@@ -15,12 +16,16 @@ namespace kdtree {
 class KdTreeTracer : public Tracer {
  public:
   explicit KdTreeTracer(const KdTree& tree) : tree_(tree) {}
+  // With traversal options (mailboxing, intersection mode; traversal.h).
+  KdTreeTracer(const KdTree& tree, const TraversalOptions& options)
+      : tree_(tree), options_(options) {}
   std::string name() const override { return "kdtree"; }
   Hit Intersect(const Ray& ray) const override;
   bool Occluded(const Ray& ray) const override;
 
  private:
   const KdTree& tree_;
+  TraversalOptions options_;
 };
 
 // Every triangle tested (cc/kdtree/brute_force.h). `bf` must outlive it.

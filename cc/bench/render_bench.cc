@@ -1,0 +1,281 @@
+// Render benchmark: the kd-tree's traversal variants against Embree 3 on the
+// same rays, single thread and several threads, interleaved in one process.
+//
+//   bazel build --config=opt //cc/bench:render_bench
+//   bazel-out/k8-opt/bin/cc/bench/render_bench --scenes bunny,dragon
+//       --preset clipping-pruning --threads 1,2 --repeats 5 --out out/bench/render.jsonl
+//
+// Per scene: load the mesh and its view (manifest camera and light, else
+// AutoView), build the kd-tree once (its leaf layout included,
+// cc/kdtree/leaf_layout.h) and a copy without the layout, and Embree
+// (cc/embree/embree_tracer.h) at the given quality. Then, before any timing,
+// validation: one render with the kd-tree recording every ray; each variant and
+// Embree trace the recorded rays again (cc/render/compare.h), and a sample of
+// --check_rays of them is checked against brute force (cc/kdtree/brute_force.h).
+// Any kd-tree variant that differs from another, or from brute force, fails
+// the run (exit 1, nothing timed). Embree's disagreements are reported (grazing
+// rays differ legitimately, see compare.h).
+//
+// Timing: for each thread count, --repeats rounds; each round renders once
+// with every tracer, in an order that rotates per round, so load from other
+// processes on the machine falls on all tracers alike. Embree's device has the
+// same thread count. Per tracer: every run's T_R, the median and the minimum,
+// and all rays per second; ratios kd/Embree of the medians and of the minima.
+// One JSON line per (scene, threads) is appended to --out.
+//
+// Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
+// layout: vertices read by triangle index, the traversal before the layout),
+// "kd_mailbox" (leaf layout and mailboxing, traversal.h).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
+#include "cc/embree/embree_tracer.h"
+#include "cc/io/soup_cache.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/config.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/render/compare.h"
+#include "cc/render/json.h"
+#include "cc/render/kdtree_tracer.h"
+#include "cc/render/manifest.h"
+#include "cc/render/renderer.h"
+#include "cc/render/view.h"
+
+ABSL_FLAG(std::string, scenes, "bunny", "Comma-separated manifest scenes (fetched).");
+ABSL_FLAG(std::string, repo, ".", "Repository root (manifest, scene index).");
+ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache ('' = none).");
+ABSL_FLAG(std::string, preset, "clipping-pruning", "kd-tree configuration preset.");
+ABSL_FLAG(std::string, threads, "1,2", "Comma-separated thread counts.");
+ABSL_FLAG(int, repeats, 5, "Timed rounds per thread count (each renders every tracer once).");
+ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
+ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox",
+          "kd-tree variants to time: kd, kd_index, kd_mailbox.");
+ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
+ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
+
+namespace kdtree {
+namespace {
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+std::string Array(const std::vector<double>& v) {
+  std::vector<std::string> parts;
+  for (double d : v) parts.push_back(JsonNumber(d));
+  return absl::StrCat("[", absl::StrJoin(parts, ", "), "]");
+}
+
+struct Entry {
+  std::string name;
+  const Tracer* tracer;
+  std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
+  uint64_t rays = 0;
+};
+
+// Results of `tracer` on every record equal the recorded ones exactly (hit
+// flag; for primary rays also triangle, t, u, v).
+uint64_t ExactMismatches(const std::vector<RayRecord>& recs, const Tracer& tracer) {
+  uint64_t bad = 0;
+  for (const RayRecord& r : recs) {
+    if (r.kind == RayKind::kPrimary) {
+      const Hit h = tracer.Intersect(r.ray());
+      const bool same = h.hit() == (r.hit != 0) &&
+                        (!h.hit() || (h.tri == r.tri && h.t == r.t && h.u == r.u && h.v == r.v));
+      bad += !same;
+    } else {
+      bad += tracer.Occluded(r.ray()) != (r.hit != 0);
+    }
+  }
+  return bad;
+}
+
+// Brute-force check of every step-th record; returns the mismatches.
+uint64_t BruteForceMismatches(const std::vector<RayRecord>& recs, const BruteForce& bf, int count,
+                              uint64_t* checked) {
+  *checked = 0;
+  if (count <= 0 || recs.empty()) return 0;
+  const size_t step = std::max<size_t>(1, recs.size() / count);
+  uint64_t bad = 0;
+  for (size_t i = 0; i < recs.size(); i += step) {
+    const RayRecord& r = recs[i];
+    ++*checked;
+    if (r.kind == RayKind::kPrimary) {
+      const Hit h = bf.Intersect(r.ray());
+      bad += !(h.hit() == (r.hit != 0) && (!h.hit() || (h.tri == r.tri && h.t == r.t)));
+    } else {
+      bad += bf.Occluded(r.ray()) != (r.hit != 0);
+    }
+  }
+  return bad;
+}
+
+absl::Status RunScene(const std::string& scene, FILE* out) {
+  const std::string repo = absl::GetFlag(FLAGS_repo);
+  absl::StatusOr<SceneRef> ref = ResolveScene(repo, scene);
+  if (!ref.ok()) return ref.status();
+  const std::string cache = absl::GetFlag(FLAGS_cache_dir);
+  absl::StatusOr<TriangleSoup> soup =
+      LoadMeshCached(ref->mesh_path, cache.empty() ? "" : absl::StrCat(repo, "/", cache));
+  if (!soup.ok()) return soup.status();
+  const View view = ref->has_view ? ref->view : AutoView(soup->Bounds());
+  absl::StatusOr<Config> config = Preset(absl::GetFlag(FLAGS_preset));
+  if (!config.ok()) return config.status();
+  absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
+  if (!tree.ok()) return tree.status();
+  KdTree index_tree = *tree;
+  std::vector<float>().swap(index_tree.leaf_soa);
+  std::vector<uint32_t>().swap(index_tree.leaf_packet);
+  TraversalOptions mb;
+  mb.mailbox = true;
+  const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);
+  const BruteForce bf(*soup);
+
+  std::vector<std::string> variants = absl::StrSplit(absl::GetFlag(FLAGS_variants), ',');
+  std::vector<Entry> proto;
+  for (const std::string& v : variants) {
+    if (v == "kd") {
+      proto.push_back({v, &kd, {}});
+    } else if (v == "kd_index") {
+      proto.push_back({v, &kd_index, {}});
+    } else if (v == "kd_mailbox") {
+      proto.push_back({v, &kd_mailbox, {}});
+    } else {
+      return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
+    }
+  }
+
+  // Validation (untimed).
+  RenderOptions ropt;
+  ropt.cast_shadow_rays = config->cast_shadow_rays;
+  RenderOptions rec_opt = ropt;
+  rec_opt.record_rays = true;
+  const RenderResult recorded = Render(*soup, kd, view, rec_opt);
+  std::string variant_json;
+  for (const Entry& e : proto) {
+    const uint64_t bad = ExactMismatches(recorded.rays, *e.tracer);
+    absl::StrAppend(&variant_json, variant_json.empty() ? "" : ", ", JsonQuote(e.name), ": ", bad);
+    if (bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd on ", bad, " rays"));
+  }
+  uint64_t checked = 0;
+  const uint64_t bf_bad =
+      BruteForceMismatches(recorded.rays, bf, absl::GetFlag(FLAGS_check_rays), &checked);
+  if (bf_bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", bf_bad, " rays differ from brute force"));
+
+  const std::string quality_flag = absl::GetFlag(FLAGS_embree);
+  const bool use_embree = quality_flag != "off";
+  for (absl::string_view ts : absl::StrSplit(absl::GetFlag(FLAGS_threads), ',')) {
+    int threads = 0;
+    if (!absl::SimpleAtoi(ts, &threads) || threads < 1) return absl::InvalidArgumentError("--threads");
+    std::unique_ptr<EmbreeTracer> embree;
+    std::string disagree = "null";
+    std::vector<Entry> entries = proto;
+    if (use_embree) {
+      absl::StatusOr<EmbreeQuality> q = ParseEmbreeQuality(quality_flag);
+      if (!q.ok()) return q.status();
+      EmbreeOptions eo;
+      eo.quality = *q;
+      eo.threads = threads;
+      absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, eo);
+      if (!e.ok()) return e.status();
+      embree = *std::move(e);
+      disagree = CompareTracers(recorded.rays, *soup, kd, *embree).ToJson();
+      entries.push_back({"embree", embree.get(), {}});
+    }
+    RenderOptions topt = ropt;
+    topt.threads = threads;
+    const int repeats = absl::GetFlag(FLAGS_repeats);
+    for (int round = 0; round < repeats; ++round) {
+      for (size_t k = 0; k < entries.size(); ++k) {
+        Entry& e = entries[(k + round) % entries.size()];
+        const RenderResult r = Render(*soup, *e.tracer, view, topt);
+        if (r.rgb != recorded.rgb) return absl::InternalError(absl::StrCat(e.name, ": image differs"));
+        e.runs.push_back(r.seconds);
+        e.primary.push_back(r.primary.seconds);
+        e.secondary.push_back(r.shadow.seconds + r.ao.seconds);
+        e.rays = r.total_rays();
+      }
+    }
+    std::string tracers;
+    for (const Entry& e : entries) {
+      absl::StrAppend(&tracers, tracers.empty() ? "" : ", ",
+                      absl::StrFormat("%s: {\"T_R_runs\": %s, \"T_R_median\": %s, \"T_R_min\": %s, "
+                                      "\"mrays_per_s_median\": %s, \"primary_s_median\": %s, "
+                                      "\"secondary_s_median\": %s}",
+                                      JsonQuote(e.name), Array(e.runs), JsonNumber(Median(e.runs)),
+                                      JsonNumber(*std::min_element(e.runs.begin(), e.runs.end())),
+                                      JsonNumber(e.rays / Median(e.runs) / 1e6),
+                                      JsonNumber(Median(e.primary)), JsonNumber(Median(e.secondary))));
+    }
+    std::string ratios;
+    if (use_embree) {
+      const Entry& em = entries.back();
+      for (size_t k = 0; k + 1 < entries.size(); ++k) {
+        const Entry& e = entries[k];
+        absl::StrAppend(
+            &ratios, ratios.empty() ? "" : ", ",
+            absl::StrFormat("%s: {\"median\": %s, \"min\": %s}", JsonQuote(e.name),
+                            JsonNumber(Median(em.runs) / Median(e.runs)),
+                            JsonNumber(*std::min_element(em.runs.begin(), em.runs.end()) /
+                                       *std::min_element(e.runs.begin(), e.runs.end()))));
+      }
+    }
+    const std::string line = absl::StrFormat(
+        "{\"bench\": \"render\", \"scene\": %s, \"n_tri\": %d, \"preset\": %s, \"threads\": %d, "
+        "\"repeats\": %d, \"rays\": %d, \"primary\": %d, \"shadow\": %d, \"ao\": %d, "
+        "\"leaf_layout_bytes\": %d, \"tracers\": {%s}, \"ratio_kd_over_embree\": {%s}, "
+        "\"validation\": {\"variants_vs_kd_mismatches\": {%s}, \"brute_force_checked\": %d, "
+        "\"brute_force_mismatches\": %d, \"embree_disagreements\": %s}}",
+        JsonQuote(scene), soup->size(), JsonQuote(absl::GetFlag(FLAGS_preset)), threads, repeats,
+        recorded.total_rays(), recorded.primary.rays, recorded.shadow.rays, recorded.ao.rays,
+        LeafLayoutBytes(*tree), tracers, ratios, variant_json, checked, bf_bad, disagree);
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+    if (out != nullptr) {
+      std::fprintf(out, "%s\n", line.c_str());
+      std::fflush(out);
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+}  // namespace kdtree
+
+int main(int argc, char** argv) {
+  absl::ParseCommandLine(argc, argv);
+  FILE* out = nullptr;
+  const std::string path = absl::GetFlag(FLAGS_out);
+  if (!path.empty()) {
+    out = std::fopen(path.c_str(), "a");
+    if (out == nullptr) {
+      std::fprintf(stderr, "render_bench: cannot open %s\n", path.c_str());
+      return 1;
+    }
+  }
+  int rc = 0;
+  for (const std::string& scene :
+       std::vector<std::string>(absl::StrSplit(absl::GetFlag(FLAGS_scenes), ','))) {
+    const absl::Status st = kdtree::RunScene(scene, out);
+    if (!st.ok()) {
+      std::fprintf(stderr, "render_bench: %s: %s\n", scene.c_str(), std::string(st.message()).c_str());
+      rc = 1;
+    }
+  }
+  if (out != nullptr) std::fclose(out);
+  return rc;
+}
