@@ -3,15 +3,18 @@
 #include <cmath>
 
 #include "absl/strings/str_format.h"
+#include "cc/geometry/watertight.h"
+#include "cc/render/exact_check.h"
 
 namespace kdtree {
 namespace {
 
 std::string KindJson(const KindDisagreements& k) {
   return absl::StrFormat(
-      "{\"rays\": %d, \"total\": %d, \"grazing\": %d, \"other\": %d, \"hit_miss\": %d, "
-      "\"t_differs\": %d}",
-      k.rays, k.total(), k.grazing, k.other(), k.hit_miss, k.t_differs);
+      "{\"rays\": %d, \"total\": %d, \"grazing\": %d, \"t_guard\": %d, \"other\": %d, "
+      "\"hit_miss\": %d, \"t_differs\": %d, \"reference_wrong\": %d, \"other_wrong\": %d}",
+      k.rays, k.total(), k.grazing, k.t_guard, k.other(), k.hit_miss, k.t_differs,
+      k.reference_wrong, k.other_wrong);
 }
 
 void Add(const KindDisagreements& k, KindDisagreements* sum) {
@@ -19,13 +22,27 @@ void Add(const KindDisagreements& k, KindDisagreements* sum) {
   sum->hit_miss += k.hit_miss;
   sum->t_differs += k.t_differs;
   sum->grazing += k.grazing;
+  sum->t_guard += k.t_guard;
+  sum->reference_wrong += k.reference_wrong;
+  sum->other_wrong += k.other_wrong;
+}
+
+ExactTriangleHit Exact(const TriangleSoup& soup, const Ray& ray, const Hit& h) {
+  return ExactIntersect(ray, soup.a(h.tri), soup.b(h.tri), soup.c(h.tri));
+}
+
+bool Grazing(const ExactTriangleHit& e) {
+  return e.edge_distance <= kGrazingUlps * FloatUlp(e.magnitude);
+}
+
+// The watertight test alone on one triangle.
+bool WatertightHits(const TriangleSoup& soup, const Ray& ray, uint32_t tri) {
+  float t, u, v;
+  return IntersectTriangleWatertight(MakeWatertightRay(ray), soup.a(tri), soup.b(tri),
+                                     soup.c(tri), ray.tmin, ray.tmax, &t, &u, &v);
 }
 
 }  // namespace
-
-bool NearEdge(const Hit& hit) {
-  return hit.hit() && std::fmin(hit.u, std::fmin(hit.v, 1.0f - hit.u - hit.v)) < kGrazingBary;
-}
 
 std::string Disagreements::ToJson() const {
   std::string k = KindJson(all);
@@ -37,8 +54,8 @@ std::string Disagreements::ToJson() const {
   return k + "}";
 }
 
-Disagreements CompareTracers(const std::vector<RayRecord>& records, const Tracer& reference,
-                             const Tracer& other) {
+Disagreements CompareTracers(const std::vector<RayRecord>& records, const TriangleSoup& soup,
+                             const Tracer& reference, const Tracer& other) {
   Disagreements d;
   for (size_t i = 0; i < records.size(); ++i) {
     const RayRecord& rec = records[i];
@@ -63,14 +80,44 @@ Disagreements CompareTracers(const std::vector<RayRecord>& records, const Tracer
     k.t_differs += t_differs;
     const Hit a = reference.Intersect(ray);
     const Hit b = rec.kind == RayKind::kPrimary ? mine : other.Intersect(ray);
-    if (NearEdge(a) || NearEdge(b)) {
+    ExactTriangleHit ea, eb;
+    if (a.hit()) ea = Exact(soup, ray, a);
+    if (b.hit()) eb = Exact(soup, ray, b);
+
+    // Exact verdict: the claim of the nearer (or only) hit is checked.
+    const bool ref_claims = rec.kind == RayKind::kPrimary
+                                ? (rec.hit != 0 && (!mine.hit() || rec.t < mine.t))
+                                : rec.hit != 0;
+    const Hit& claim = ref_claims ? a : b;
+    const ExactTriangleHit& eclaim = ref_claims ? ea : eb;
+    const bool claim_right = claim.hit() && eclaim.hit;
+    if (claim_right != ref_claims) {
+      ++k.reference_wrong;
+    } else {
+      ++k.other_wrong;
+    }
+
+    const char* cls = "other";
+    if ((a.hit() && Grazing(ea)) || (b.hit() && Grazing(eb))) {
       ++k.grazing;
-    } else if (d.examples.size() < 20) {
+      continue;
+    } else if (!ref_claims && claim_right && !WatertightHits(soup, ray, claim.tri)) {
+      ++k.t_guard;
+      cls = "t_guard";
+    }
+    if (d.examples.size() < 20) {
+      auto show = [](const Hit& h, const ExactTriangleHit& e) {
+        if (!h.hit()) return std::string("miss");
+        return absl::StrFormat(
+            "tri %d t %.9g u %.6g v %.6g (exact: %s, t %.9g, edge distance %.3g = %.3g ulps of "
+            "%.6g)",
+            h.tri, h.t, h.u, h.v, e.hit ? "hit" : "no hit", e.t, e.edge_distance,
+            e.edge_distance / FloatUlp(e.magnitude), e.magnitude);
+      };
       d.examples.push_back(absl::StrFormat(
-          "record %d (%s, pixel %d): %s tri %d t %.9g u %.6g v %.6g; %s tri %d t %.9g u %.6g "
-          "v %.6g; recorded hit %d",
-          i, RayKindName(rec.kind), rec.pixel, reference.name(), a.tri, a.t, a.u, a.v,
-          other.name(), b.tri, b.t, b.u, b.v, rec.hit));
+          "record %d (%s, pixel %d) %s: %s %s; %s %s; recorded hit %d; wrong: %s", i,
+          RayKindName(rec.kind), rec.pixel, cls, reference.name(), show(a, ea), other.name(),
+          show(b, eb), rec.hit, claim_right != ref_claims ? reference.name() : other.name()));
     }
   }
   for (const KindDisagreements& k : d.by_kind) Add(k, &d.all);

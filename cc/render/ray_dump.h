@@ -10,7 +10,8 @@
 //   bytes [20, 24)     uint32 reserved, 0
 //   bytes [24, 32)     uint64 record count n
 //   bytes [32, 32+56n) n records (RayRecord, ray_record.h):
-//      0 float32[3] origin      12 float32[3] dir (unit length)
+//      0 float32[3] origin      12 float32[3] dir (unit length, except shadow rays:
+//                                  light - origin, with tmax = 1)
 //     24 float32 tmin          28 float32 tmax     (hits count for tmin < t <= tmax)
 //     32 uint8 kind (0 primary closest hit, 1 shadow any hit, 2 ambient-occlusion any hit)
 //     33 uint8 hit (1 = hit / occluded)

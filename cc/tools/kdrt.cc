@@ -303,7 +303,7 @@ absl::Status Run() {
     const double e_tr = Median(et.t_r);
     const RenderResult& er = et.last;
     progress.Step("comparing with embree");
-    const Disagreements d = CompareTracers(recorded.rays, kd, *embree);
+    const Disagreements d = CompareTracers(recorded.rays, *soup, kd, *embree);
     disagree_json = d.ToJson();
     for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
     ratio_json = JsonNumber(e_tr / t_r);
@@ -311,12 +311,13 @@ absl::Status Run() {
         "{\"quality\": %s, \"T_B\": %s, \"T_B_runs\": %s, \"T_R\": %s, \"T_R_runs\": %s, "
         "\"perf_krays\": %s, \"all_rays_per_s\": %s, \"P_hit\": %d, \"P_miss\": %d, \"S_hit\": %d, "
         "\"S_miss\": %d, \"effects\": {%s, %s, %s}, \"disagreements\": %d, "
-        "\"disagreements_grazing\": %d, \"disagreements_other\": %d, \"perf_ratio_kd_over_embree\": %s}",
+        "\"disagreements_grazing\": %d, \"disagreements_t_guard\": %d, \"disagreements_other\": %d, "
+        "\"perf_ratio_kd_over_embree\": %s}",
         JsonQuote(EmbreeQualityName(*quality)), JsonNumber(Median(eb_runs)), Array(eb_runs),
         JsonNumber(e_tr), Array(et.t_r), JsonNumber(pixels / e_tr / 1000.0),
         JsonNumber(er.total_rays() / e_tr), er.p_hit, er.p_miss, er.s_hit, er.s_miss,
         EffectJson("primary", er.primary.rays, et.t_primary), EffectJson("shadow", er.shadow.rays, et.t_shadow),
-        EffectJson("ao", er.ao.rays, et.t_ao), d.all.total(), d.all.grazing, d.all.other(), ratio_json);
+        EffectJson("ao", er.ao.rays, et.t_ao), d.all.total(), d.all.grazing, d.all.t_guard, d.all.other(), ratio_json);
   }
   progress.Done();
 

@@ -1,0 +1,160 @@
+#include "cc/render/compare.h"
+
+#include <vector>
+
+#include "cc/kdtree/brute_force.h"
+#include "cc/render/exact_check.h"
+#include "cc/render/kdtree_tracer.h"
+#include "cc/render/ray_record.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+// Every triangle checked in exact arithmetic (exact_check.h): the right
+// answer, slowly. Closest hit by the (rounded) exact t.
+class ExactTracer : public Tracer {
+ public:
+  explicit ExactTracer(const TriangleSoup& soup) : soup_(soup) {}
+  std::string name() const override { return "exact"; }
+  Hit Intersect(const Ray& ray) const override {
+    Hit best;
+    for (uint32_t i = 0; i < soup_.size(); ++i) {
+      const ExactTriangleHit e = ExactIntersect(ray, soup_.a(i), soup_.b(i), soup_.c(i));
+      if (e.hit && Closer(static_cast<float>(e.t), i, best)) {
+        best.tri = i;
+        best.t = static_cast<float>(e.t);
+      }
+    }
+    return best;
+  }
+  bool Occluded(const Ray& ray) const override { return Intersect(ray).hit(); }
+
+ private:
+  const TriangleSoup& soup_;
+};
+
+// Brute force that never sees triangle 0: a wrong tracer.
+class MissesTriangleZero : public Tracer {
+ public:
+  explicit MissesTriangleZero(const TriangleSoup& soup) : soup_(soup) {}
+  std::string name() const override { return "broken"; }
+  Hit Intersect(const Ray& ray) const override {
+    std::vector<uint32_t> others;
+    for (uint32_t i = 1; i < soup_.size(); ++i) others.push_back(i);
+    return BruteForce(soup_).Intersect(ray, others);
+  }
+  bool Occluded(const Ray& ray) const override { return Intersect(ray).hit(); }
+
+ private:
+  const TriangleSoup& soup_;
+};
+
+RayRecord Record(const Ray& ray, RayKind kind, const Tracer& tracer) {
+  RayRecord rec;
+  rec.origin = ray.origin;
+  rec.dir = ray.dir;
+  rec.tmin = ray.tmin;
+  rec.tmax = ray.tmax;
+  rec.kind = kind;
+  if (kind == RayKind::kPrimary) {
+    const Hit h = tracer.Intersect(ray);
+    rec.hit = h.hit();
+    if (h.hit()) {
+      rec.tri = h.tri;
+      rec.t = h.t;
+      rec.u = h.u;
+      rec.v = h.v;
+    }
+  } else {
+    rec.hit = tracer.Occluded(ray);
+  }
+  return rec;
+}
+
+// A real shadow ray of the engine scene (pruning preset, manifest view): it
+// leaves a surface 1e-3 behind a large, nearly parallel triangle and crosses it
+// at t = 2.36e-6 (1.8e-3 world units). The watertight test's conservative t
+// bound rejects that hit; the exact answer is: occluded.
+TEST(Compare, ExactHitBelowTheWatertightTBoundIsTGuard) {
+  TriangleSoup soup;
+  soup.Add(Vec3(-224.000031f, 53.5317688f, 77.0521545f), Vec3(-224.000046f, 80.7639618f, 53.4683723f),
+           Vec3(-224.000031f, 61.7991104f, 73.1961823f));
+  Ray ray;
+  ray.origin = Vec3(-224.001053f, 59.2209358f, 74.3958282f);
+  ray.dir = Vec3(433.014038f, 523.352051f, 337.62915f);
+  ray.tmin = 0.0f;
+  ray.tmax = 1.0f;
+  const BruteForce bf(soup);
+  const BruteForceTracer watertight(bf);
+  const ExactTracer exact(soup);
+  const ExactTriangleHit e = ExactIntersect(ray, soup.a(0), soup.b(0), soup.c(0));
+  ASSERT_TRUE(e.hit);
+  EXPECT_NEAR(e.t, 2.36e-6, 0.01e-6);
+  const Disagreements d =
+      CompareTracers({Record(ray, RayKind::kShadow, watertight)}, soup, watertight, exact);
+  EXPECT_EQ(d.all.total(), 1u) << d.ToJson();
+  EXPECT_EQ(d.all.t_guard, 1u) << d.ToJson();
+  EXPECT_EQ(d.all.grazing, 0u);
+  EXPECT_EQ(d.all.other(), 0u);
+  EXPECT_EQ(d.all.reference_wrong, 1u);
+}
+
+// A real primary ray of the teapots scene: the watertight test reports a hit
+// on triangle 0 that is, exactly, 0.1 ulp outside its edge; the next surface is
+// triangle 1. Grazing, and the reference is the one that is wrong.
+TEST(Compare, HitJustOutsideAnEdgeIsGrazing) {
+  TriangleSoup soup;
+  soup.Add(Vec3(5.03153086f, 0.283207953f, 2.02320671f), Vec3(5.0413394f, 0.287568688f, 2.00816941f),
+           Vec3(5.01601362f, 0.293907821f, 1.99966097f));
+  soup.Add(Vec3(5.02814484f, 0.118860729f, 1.76349771f), Vec3(5.10360765f, 0.129305601f, 1.77940595f),
+           Vec3(5.10112095f, 0.103911825f, 1.79138923f));
+  Ray ray;
+  ray.origin = Vec3(0, 21.9505997f, 30.8195f);
+  ray.dir = Vec3(0.137871146f, -0.595067263f, -0.791761696f);
+  const BruteForce bf(soup);
+  const BruteForceTracer watertight(bf);
+  const ExactTracer exact(soup);
+  ASSERT_EQ(watertight.Intersect(ray).tri, 0u);
+  ASSERT_EQ(exact.Intersect(ray).tri, 1u);
+  const Disagreements d =
+      CompareTracers({Record(ray, RayKind::kPrimary, watertight)}, soup, watertight, exact);
+  EXPECT_EQ(d.all.t_differs, 1u) << d.ToJson();
+  EXPECT_EQ(d.all.grazing, 1u) << d.ToJson();
+  EXPECT_EQ(d.all.other(), 0u);
+  EXPECT_EQ(d.all.reference_wrong, 1u);
+}
+
+// A tracer that loses a triangle disagrees far from any edge: "other", and
+// the exact verdict names it.
+TEST(Compare, MissedTriangleIsOther) {
+  TriangleSoup soup;
+  soup.Add(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  soup.Add(Vec3(0, 0, -1), Vec3(1, 0, -1), Vec3(0, 1, -1));
+  const BruteForce bf(soup);
+  const BruteForceTracer good(bf);
+  const MissesTriangleZero broken(soup);
+  std::vector<RayRecord> records;
+  Ray primary;
+  primary.origin = Vec3(0.25f, 0.25f, 1);
+  primary.dir = Vec3(0, 0, -1);
+  records.push_back(Record(primary, RayKind::kPrimary, good));  // t 1 vs t 2
+  Ray shadow = primary;
+  shadow.tmax = 1.5f;  // reaches triangle 0 only
+  records.push_back(Record(shadow, RayKind::kShadow, good));
+  Ray away = primary;
+  away.origin = Vec3(5, 5, 1);  // misses both: agreement
+  records.push_back(Record(away, RayKind::kPrimary, good));
+  const Disagreements d = CompareTracers(records, soup, good, broken);
+  EXPECT_EQ(d.all.rays, 3u);
+  EXPECT_EQ(d.by_kind[0].t_differs, 1u) << d.ToJson();
+  EXPECT_EQ(d.by_kind[1].hit_miss, 1u) << d.ToJson();
+  EXPECT_EQ(d.all.other(), 2u);
+  EXPECT_EQ(d.all.other_wrong, 2u);
+  EXPECT_EQ(d.all.reference_wrong, 0u);
+  ASSERT_EQ(d.examples.size(), 2u);
+  EXPECT_NE(d.examples[0].find("wrong: broken"), std::string::npos) << d.examples[0];
+}
+
+}  // namespace
+}  // namespace kdtree
