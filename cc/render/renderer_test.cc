@@ -109,7 +109,7 @@ TEST(Renderer, KdTreeAndBruteForceGiveIdenticalHitBuffers) {
   }
   EXPECT_TRUE(ref.rays == kd.rays);
   EXPECT_EQ(ref.rgb, kd.rgb);
-  const Disagreements d = CompareTracers(kd.rays, KdTreeTracer(Scene().tree), brute);
+  const Disagreements d = CompareTracers(kd.rays, Scene().soup, KdTreeTracer(Scene().tree), brute);
   EXPECT_EQ(d.all.total(), 0u) << d.ToJson();
 }
 
