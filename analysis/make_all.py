@@ -23,6 +23,7 @@ if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(
         __file__))))
 
+from analysis import accuracy  # noqa: E402
 from analysis import claims  # noqa: E402
 from analysis import context  # noqa: E402
 from analysis import embree  # noqa: E402
@@ -48,6 +49,7 @@ GENERATORS = [
     kdtree_figures,
     claims,
     embree,
+    accuracy,
     # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
 ]
 

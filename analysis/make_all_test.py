@@ -3,6 +3,7 @@ import re
 import tempfile
 import unittest
 
+from analysis import accuracy
 from analysis import make_all
 from analysis import row18
 from analysis import testdata
@@ -21,7 +22,8 @@ EXPECTED_MACROS = [
     "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
-    "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements"]
+    "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements"
+] + accuracy.MACROS
 
 
 class MakeAllTest(unittest.TestCase):

@@ -61,6 +61,11 @@ step "in-plane triangles: seed-compatible vs default mode on a voxel world"
 "$PY" experiments/planar.py --kdrt "$BIN/cc/tools/kdrt" --out "$OUT" || \
   echo "reproduce: some planar runs failed (see above)" >&2
 
+step "accuracy versus time: what each step of tree accuracy costs ($PROFILE)"
+# experiments/accuracy.json; resumable (finished (scene, step) runs are skipped).
+"$PY" experiments/accuracy.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \
+  --out "$OUT" || echo "reproduce: some accuracy runs failed (see above)" >&2
+
 # ---------------------------------------------------------------------------
 # LATER STAGES GO HERE (each appends raw records under $RESULTS and has a
 # generator in analysis/make_all.py):

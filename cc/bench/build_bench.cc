@@ -4,8 +4,11 @@
 //
 // For each preset the tree is first validated (tree invariants, and
 // --check_rays seeded rays against the brute-force reference), then built
-// --repeats times; one JSON line per preset goes to --out with the median T_B,
-// every run's T_B and the tree statistics (cc/kdtree/stats.h).
+// --repeats times; one JSON line per preset and thread count goes to --out
+// with the median T_B, every run's T_B, the throughput (triangles / T_B) and
+// the tree statistics (cc/kdtree/stats.h). With several --threads values the
+// runs are interleaved (1, 2, 1, 2, ...) so that load from other processes
+// falls on both alike.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -15,6 +18,7 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
@@ -29,6 +33,9 @@ ABSL_FLAG(std::string, name, "", "scene name for the records (default: the file 
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "triangle-soup cache ('' for none)");
 ABSL_FLAG(std::string, presets, "", "comma-separated presets (default: the report's nine)");
 ABSL_FLAG(int, repeats, 5, "builds per preset; the median is reported");
+ABSL_FLAG(std::string, threads, "1",
+          "comma-separated build thread counts (Config::build_threads; 0 = all cores); "
+          "each preset is timed with each, interleaved run by run");
 ABSL_FLAG(int, check_rays, 200, "rays checked against brute force before timing");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended)");
 
@@ -119,19 +126,34 @@ int Run() {
       return 1;
     }
     tree = absl::StatusOr<KdTree>();  // free it before timing
-    std::vector<double> runs;
-    for (int r = 0; r < absl::GetFlag(FLAGS_repeats); ++r) {
-      absl::StatusOr<KdTree> t = BuildKdTree(*soup, *config);
-      runs.push_back(t->build_seconds);
+    std::vector<int> thread_counts;
+    for (absl::string_view t : absl::StrSplit(absl::GetFlag(FLAGS_threads), ',')) {
+      int v = 1;
+      if (!absl::SimpleAtoi(t, &v) || v < 0) {
+        std::fprintf(stderr, "build_bench: bad --threads entry '%s'\n", std::string(t).c_str());
+        return 2;
+      }
+      thread_counts.push_back(v);
     }
+    std::vector<std::vector<double>> runs_by_threads(thread_counts.size());
+    for (int r = 0; r < absl::GetFlag(FLAGS_repeats); ++r) {
+      for (size_t k = 0; k < thread_counts.size(); ++k) {
+        Config c = *config;
+        c.build_threads = thread_counts[k];
+        absl::StatusOr<KdTree> t = BuildKdTree(*soup, c);
+        runs_by_threads[k].push_back(t->build_seconds);
+      }
+    }
+    for (size_t k = 0; k < thread_counts.size(); ++k) {
+    const std::vector<double>& runs = runs_by_threads[k];
     std::vector<double> sorted = runs;
     std::sort(sorted.begin(), sorted.end());
     const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
     std::fprintf(out,
                  "{\"scene\": \"%s\", \"mesh\": \"%s\", \"n_tri\": %zu, \"preset\": \"%s\", "
-                 "\"threads\": 1, \"optimized\": %s, \"T_B\": %.6f, \"T_B_runs\": [%s], "
-                 "\"checked_rays\": %zu, \"stats\": %s}\n",
-                 name.c_str(), mesh.c_str(), soup->size(), preset.c_str(),
+                 "\"threads\": %d, \"optimized\": %s, \"T_B\": %.6f, \"T_B_runs\": [%s], "
+                 "\"mtri_per_s\": %.4f, \"checked_rays\": %zu, \"stats\": %s}\n",
+                 name.c_str(), mesh.c_str(), soup->size(), preset.c_str(), thread_counts[k],
 #ifdef __OPTIMIZE__
                  "true",
 #else
@@ -140,11 +162,15 @@ int Run() {
                  median, absl::StrJoin(runs, ", ", [](std::string* o, double v) {
                    absl::StrAppendFormat(o, "%.6f", v);
                  }).c_str(),
-                 rays.size(), StatsToJson(stats).c_str());
+                 median > 0 ? soup->size() / median * 1e-6 : 0.0, rays.size(),
+                 StatsToJson(stats).c_str());
     std::fflush(out);
-    std::fprintf(stderr, "  %-18s T_B %8.3f s  N_I %10llu  N_TP %11llu\n", preset.c_str(),
-                 median, static_cast<unsigned long long>(stats.inner),
+    std::fprintf(stderr, "  %-18s threads %d  T_B %8.3f s  %6.3f Mtri/s  N_I %10llu  N_TP %11llu\n",
+                 preset.c_str(), thread_counts[k], median,
+                 median > 0 ? soup->size() / median * 1e-6 : 0.0,
+                 static_cast<unsigned long long>(stats.inner),
                  static_cast<unsigned long long>(stats.leaf_refs));
+    }
   }
   if (out != stdout) std::fclose(out);
   return 0;

@@ -1,0 +1,149 @@
+#!/usr/bin/python3
+"""Runs the accuracy-versus-time study of experiments/accuracy.json.
+
+    /usr/bin/python3 experiments/accuracy.py --profile quick \
+        --kdrt bazel-out/k8-opt/bin/cc/tools/kdrt [--out out]
+
+For every scene of the profile and every step, kdrt builds and renders with
+--preset PRESET and an environment file holding the step's options (written
+to OUT/accuracy/envs/). The record kdrt writes gets the step's knob, name
+and options and is appended to OUT/results/accuracy.jsonl (append-only; a
+failure is appended as {"ok": false, ...}). Resumable: a (scene, step,
+repeats) already recorded with "ok": true is skipped. Reuses
+experiments/run_matrix.py's record and host helpers. Standard library only.
+"""
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "experiments"))
+
+import run_matrix  # noqa: E402
+import scenes as scene_runner  # noqa: E402
+
+STUDY = os.path.join(ROOT, "experiments", "accuracy.json")
+RESULTS_FILE = "accuracy.jsonl"
+BINNING_KEYS = ("useBinning", "useDrivingAxis", "bins")
+
+
+def env_text(options):
+    """The environment file of a step: its options in the KDTree block."""
+    inner = "".join("    %s %s\n" % (k, v) for k, v in options.items()
+                    if k not in BINNING_KEYS)
+    binning = "".join("        %s %s\n" % (k, v) for k, v in options.items()
+                      if k in BINNING_KEYS)
+    if binning:
+        inner += "    Binning {\n%s    }\n" % binning
+    return "KDTree {\n%s}\n" % inner
+
+
+def slug(step):
+    return re.sub(r"[^a-z0-9]+", "-", step.lower()).strip("-")
+
+
+def job_key(scene, step, repeats):
+    return [scene, step["knob"], step["step"], int(repeats)]
+
+
+def plan(profile_name, study, manifest, index, scenes=None):
+    profile = study["profiles"][profile_name]
+    names = profile["scenes"]
+    if names == "manifest":
+        names = [s["name"] for s in manifest
+                 if profile_name in s.get("profiles", [])]
+    if scenes:
+        names = [n for n in names if n in scenes]
+    return [(n, st) for n in names if n in index for st in study["steps"]]
+
+
+def run_one(kdrt, scene, step, profile, profile_name, out):
+    env_dir = os.path.join(out, "accuracy", "envs")
+    os.makedirs(env_dir, exist_ok=True)
+    env_path = os.path.join(env_dir, slug(step["step"]) + ".env")
+    with open(env_path, "w", encoding="utf-8") as f:
+        f.write(env_text(step["options"]))
+    tmp = tempfile.mkdtemp(prefix="kdrt-acc-", dir=out)
+    cmd = [kdrt, "--scene", scene, "--preset", step["preset"],
+           "--env", env_path, "--label", slug(step["step"]),
+           "--repeats", str(profile["repeats"]), "--threads", "1",
+           "--embree", "off", "--out", tmp]
+    if profile.get("repeat_budget_s"):
+        cmd += ["--repeat_budget_s", str(profile["repeat_budget_s"])]
+    key = job_key(scene, step, profile["repeats"])
+    start = time.time()
+    try:
+        proc = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+        wall = time.time() - start
+        lines = []
+        results = os.path.join(tmp, "results.jsonl")
+        if os.path.exists(results):
+            with open(results, encoding="utf-8") as f:
+                lines = [json.loads(x) for x in f if x.strip()]
+        base = {"job": key, "scene": scene, "knob": step["knob"],
+                "step": step["step"], "options": step["options"],
+                "profile": profile_name, "wall_s": wall}
+        if proc.returncode != 0 or not lines:
+            base.update({"ok": False, "returncode": proc.returncode,
+                         "command": cmd, "error": proc.stderr[-2000:]})
+            return base
+        rec = lines[-1]
+        rec.update(base)
+        rec.update({"ok": True, "node": run_matrix.node_info()})
+        return rec
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--profile", default="quick")
+    parser.add_argument("--kdrt", required=True)
+    parser.add_argument("--out", default=os.path.join(ROOT, "out"))
+    parser.add_argument("--study", default=STUDY)
+    parser.add_argument("--manifest", default=scene_runner.DEFAULT_MANIFEST)
+    parser.add_argument("--index", default=scene_runner.DEFAULT_INDEX)
+    parser.add_argument("--scenes", default="",
+                        help="comma-separated subset of the profile's scenes")
+    args = parser.parse_args(argv)
+    with open(args.study, encoding="utf-8") as f:
+        study = json.load(f)
+    if args.profile not in study["profiles"]:
+        print("accuracy: unknown profile %s" % args.profile, file=sys.stderr)
+        return 2
+    manifest = scene_runner.load_manifest(args.manifest)
+    index = scene_runner.load_index(args.index)
+    jobs = plan(args.profile, study, manifest, index,
+                [s for s in args.scenes.split(",") if s])
+    results_dir = os.path.join(args.out, "results")
+    os.makedirs(results_dir, exist_ok=True)
+    results_path = os.path.join(results_dir, RESULTS_FILE)
+    done = run_matrix.done_keys(results_path)
+    profile = study["profiles"][args.profile]
+    failed = 0
+    for i, (scene, step) in enumerate(jobs):
+        if tuple(job_key(scene, step, profile["repeats"])) in done:
+            continue
+        rec = run_one(os.path.abspath(args.kdrt), scene, step, profile,
+                      args.profile, args.out)
+        run_matrix.append_record(results_path, rec)
+        failed += not rec["ok"]
+        print("accuracy: [%d/%d] %s / %s: %s" % (
+            i + 1, len(jobs), scene, step["step"],
+            "T_B %.3f s, T_R %.3f s, SAH %.2f" % (
+                rec["T_B"], rec["T_R"], rec.get("sah_cost", float("nan")))
+            if rec["ok"] else "FAILED (%s)" % rec["error"][-300:]),
+            file=sys.stderr)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
