@@ -228,7 +228,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
       for (uint32_t base = 0; base < count; base += kPacketLanes, packet += kPacketFloats) {
         const uint32_t lanes = count - base < kPacketLanes ? count - base : kPacketLanes;
         int live = (1 << lanes) - 1;
-        if (kMailbox) {
+        if (kMailbox && kCount) {
+          // Counting: the mailbox is checked before the test, so N_IT counts
+          // the references really tested.
           for (uint32_t l = 0; l < lanes; ++l) {
             uint32_t& slot = mailbox[tris[base + l] & (kMailboxSlots - 1)];
             if (slot == tris[base + l]) {
@@ -244,6 +246,13 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
           const int l = __builtin_ctz(live);
           live &= live - 1;
           const uint32_t tri = tris[base + l];
+          if (kMailbox && !kCount) {
+            // Fast path: the 4-wide reject costs the same with or without a
+            // lane, so only the full test of a survivor is mailboxed.
+            uint32_t& slot = mailbox[tri & (kMailboxSlots - 1)];
+            if (slot == tri) continue;
+            slot = tri;
+          }
           const Vec3 a(packet[0 * 4 + l], packet[1 * 4 + l], packet[2 * 4 + l]);
           const Vec3 b(packet[3 * 4 + l], packet[4 * 4 + l], packet[5 * 4 + l]);
           const Vec3 c(packet[6 * 4 + l], packet[7 * 4 + l], packet[8 * 4 + l]);

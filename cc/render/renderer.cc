@@ -20,17 +20,6 @@ double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
-// f(y0, y1) over the rows [0, height): inline for one thread, else in parallel.
-template <typename F>
-void ForRows(int height, int threads, const F& f) {
-  if (threads <= 1) {
-    f(0, height);
-    return;
-  }
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 1),
-                    [&](const tbb::blocked_range<int>& r) { f(r.begin(), r.end()); });
-}
-
 RayRecord MakeRecord(const Ray& r, RayKind kind, uint32_t pixel, uint16_t index) {
   RayRecord rec;
   rec.origin = r.origin;
@@ -63,6 +52,41 @@ uint64_t Sum(const std::vector<uint64_t>& v) {
   return s;
 }
 
+// Sum of f(y, x0, x1) over row segments covering the image [0, w) x [0, h):
+// whole rows in order for one thread; whole rows in parallel when `rows` (the
+// recorded rays are kept per row); else square tiles of side `tile` in
+// parallel (Wald, Slusallek, Benthin & Wagner, "Interactive rendering with
+// coherent ray tracing", CGF 20(3), 2001: tiles keep neighbouring rays, which
+// visit the same nodes, on one core). Every count is an integer written by one
+// task and summed afterwards, so results never depend on the schedule.
+template <typename F>
+uint64_t ForPixels(int w, int h, int threads, int tile, bool rows, const F& f) {
+  if (threads <= 1) {
+    uint64_t sum = 0;
+    for (int y = 0; y < h; ++y) sum += f(y, 0, w);
+    return sum;
+  }
+  if (rows || tile <= 0) {
+    std::vector<uint64_t> counts(h);
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int y = r.begin(); y < r.end(); ++y) counts[y] = f(y, 0, w);
+    });
+    return Sum(counts);
+  }
+  const int nx = (w + tile - 1) / tile, ny = (h + tile - 1) / tile;
+  std::vector<uint64_t> counts(static_cast<size_t>(nx) * ny);
+  tbb::parallel_for(tbb::blocked_range<int>(0, nx * ny, 1), [&](const tbb::blocked_range<int>& r) {
+    for (int t = r.begin(); t < r.end(); ++t) {
+      const int x0 = (t % nx) * tile, y0 = (t / nx) * tile;
+      const int x1 = std::min(w, x0 + tile), y1 = std::min(h, y0 + tile);
+      uint64_t c = 0;
+      for (int y = y0; y < y1; ++y) c += f(y, x0, x1);
+      counts[t] = c;
+    }
+  });
+  return Sum(counts);
+}
+
 void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* out) {
   for (auto& row : *rows) {
     out->insert(out->end(), row.begin(), row.end());
@@ -86,6 +110,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   const bool shadows = options.cast_shadow_rays && n_lights > 0;
   const int ao_samples = view.ao.enabled() ? view.ao.samples : 0;
   const bool record = options.record_rays;
+  const int tile = options.tile_size;
 
   RenderResult res;
   res.width = w;
@@ -93,16 +118,15 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   res.primary_hits.resize(pixels);
   std::vector<uint8_t> occluded(shadows ? pixels * n_lights : 0);
   std::vector<uint16_t> ao_open(ao_samples > 0 ? pixels : 0);
-  std::vector<uint64_t> row_count(h);
   std::vector<std::vector<RayRecord>> rows(record ? h : 0);
   const Clock::time_point start = Clock::now();
 
   // 1. Primary rays.
   Clock::time_point t0 = Clock::now();
-  ForRows(h, threads, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
+  res.p_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
+    {
       uint64_t hits = 0;
-      for (int x = 0; x < w; ++x) {
+      for (int x = x0; x < x1; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         const Ray ray = camera.PrimaryRay(x, y);
         const Hit hit = tracer.Intersect(ray);
@@ -120,22 +144,21 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
           rows[y].push_back(rec);
         }
       }
-      row_count[y] = hits;
+      return hits;
     }
   });
   res.primary.seconds = Seconds(t0);
   res.primary.rays = pixels;
-  res.p_hit = Sum(row_count);
   res.p_miss = pixels - res.p_hit;
   if (record) Append(&rows, &res.rays);
 
   // 2. Shadow rays: one per primary hit and light.
   if (shadows) {
     t0 = Clock::now();
-    ForRows(h, threads, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) {
+    res.s_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
+      {
         uint64_t blocked = 0;
-        for (int x = 0; x < w; ++x) {
+        for (int x = x0; x < x1; ++x) {
           const size_t p = static_cast<size_t>(y) * w + x;
           const Hit& hit = res.primary_hits[p];
           if (!hit.hit()) continue;
@@ -153,12 +176,11 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
             }
           }
         }
-        row_count[y] = blocked;
+        return blocked;
       }
     });
     res.shadow.seconds = Seconds(t0);
     res.shadow.rays = res.p_hit * n_lights;
-    res.s_hit = Sum(row_count);
     res.s_miss = res.shadow.rays - res.s_hit;
     if (record) Append(&rows, &res.rays);
   }
@@ -166,10 +188,10 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   // 3. Ambient-occlusion rays.
   if (ao_samples > 0) {
     t0 = Clock::now();
-    ForRows(h, threads, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) {
+    res.ao_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
+      {
         uint64_t blocked = 0;
-        for (int x = 0; x < w; ++x) {
+        for (int x = x0; x < x1; ++x) {
           const size_t p = static_cast<size_t>(y) * w + x;
           const Hit& hit = res.primary_hits[p];
           if (!hit.hit()) continue;
@@ -189,12 +211,11 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
           ao_open[p] = static_cast<uint16_t>(open);
           blocked += ao_samples - open;
         }
-        row_count[y] = blocked;
+        return blocked;
       }
     });
     res.ao.seconds = Seconds(t0);
     res.ao.rays = res.p_hit * ao_samples;
-    res.ao_hit = Sum(row_count);
     res.ao_miss = res.ao.rays - res.ao_hit;
     if (record) Append(&rows, &res.rays);
   }
@@ -203,9 +224,9 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   res.rgb.resize(pixels * 3);
   const uint8_t bg[3] = {ToByte(options.background.x), ToByte(options.background.y),
                          ToByte(options.background.z)};
-  ForRows(h, threads, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      for (int x = 0; x < w; ++x) {
+  ForPixels(w, h, threads, tile, false, [&](int y, int x0, int x1) -> uint64_t {
+    {
+      for (int x = x0; x < x1; ++x) {
         const size_t p = static_cast<size_t>(y) * w + x;
         const Hit& hit = res.primary_hits[p];
         if (!hit.hit()) {
@@ -233,6 +254,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
         res.rgb[3 * p + 2] = ToByte(c.z);
       }
     }
+    return 0;
   });
   res.seconds = Seconds(start);
   return res;

@@ -21,10 +21,11 @@
 // the recorded rays (traversal_counts.h), so counting never touches T_R.
 //
 // Threads: 1 (default) runs plain loops on the calling thread. threads > 1
-// runs each step as tbb::parallel_for over image rows, capped with
+// runs each step as tbb::parallel_for over square tiles of `tile_size` pixels
+// (over whole rows when recording rays, or when tile_size is 0), capped with
 // tbb::global_control. Every pixel's rays depend only on the pixel, and
 // counts are integer sums, so image, counts and recorded rays are identical
-// for any thread count.
+// for any thread count and tile size.
 #ifndef KDTREE_CC_RENDER_RENDERER_H_
 #define KDTREE_CC_RENDER_RENDERER_H_
 
@@ -42,6 +43,9 @@ namespace kdtree {
 struct RenderOptions {
   // Worker threads; 1 = no TBB at all.
   int threads = 1;
+  // Side of the square tiles rendered in parallel (threads > 1, not
+  // recording); 0 = whole rows.
+  int tile_size = 16;
   // RTCore.castShadowRays: shadow rays when the view has lights.
   bool cast_shadow_rays = true;
   // Keep every ray and its result in RenderResult::rays (primary rays in pixel

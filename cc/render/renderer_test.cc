@@ -94,6 +94,31 @@ TEST(Renderer, IdenticalForOneAndTwoThreads) {
   EXPECT_TRUE(a.rays == b.rays);
 }
 
+TEST(Renderer, TilesGiveTheSameImageAsOneThread) {
+  View view = testing::SphereView(100, 70);  // not a multiple of the tile sizes
+  view.ao.samples = 2;
+  view.ao.distance = 0.3f;
+  const KdTreeTracer tracer(Scene().tree);
+  const RenderResult a = RenderKd(view, 1, false);
+  for (int tile : {0, 7, 16, 64}) {
+    RenderOptions opt;
+    opt.threads = 2;
+    opt.tile_size = tile;
+    const RenderResult b = Render(Scene().soup, tracer, view, opt);
+    EXPECT_EQ(a.rgb, b.rgb) << "tile " << tile;
+    EXPECT_EQ(a.p_hit, b.p_hit) << "tile " << tile;
+    EXPECT_EQ(a.s_hit, b.s_hit) << "tile " << tile;
+    EXPECT_EQ(a.ao_hit, b.ao_hit) << "tile " << tile;
+    EXPECT_EQ(a.total_rays(), b.total_rays()) << "tile " << tile;
+    for (size_t p = 0; p < a.primary_hits.size(); ++p) {
+      ASSERT_EQ(a.primary_hits[p].tri, b.primary_hits[p].tri) << "pixel " << p;
+      ASSERT_EQ(a.primary_hits[p].t, b.primary_hits[p].t) << "pixel " << p;
+    }
+  }
+  EXPECT_GT(a.p_hit, 0u);
+  EXPECT_GT(a.s_hit, 0u);
+}
+
 TEST(Renderer, KdTreeAndBruteForceGiveIdenticalHitBuffers) {
   const View view = testing::SphereView(80, 80);
   const BruteForce bf(Scene().soup);
