@@ -11,9 +11,10 @@ namespace {
 
 std::string KindJson(const KindDisagreements& k) {
   return absl::StrFormat(
-      "{\"rays\": %d, \"total\": %d, \"grazing\": %d, \"t_guard\": %d, \"other\": %d, "
-      "\"hit_miss\": %d, \"t_differs\": %d, \"reference_wrong\": %d, \"other_wrong\": %d}",
-      k.rays, k.total(), k.grazing, k.t_guard, k.other(), k.hit_miss, k.t_differs,
+      "{\"rays\": %d, \"total\": %d, \"grazing\": %d, \"at_origin\": %d, \"t_guard\": %d, "
+      "\"other\": %d, \"hit_miss\": %d, \"t_differs\": %d, \"reference_wrong\": %d, "
+      "\"other_wrong\": %d}",
+      k.rays, k.total(), k.grazing, k.at_origin, k.t_guard, k.other(), k.hit_miss, k.t_differs,
       k.reference_wrong, k.other_wrong);
 }
 
@@ -22,6 +23,7 @@ void Add(const KindDisagreements& k, KindDisagreements* sum) {
   sum->hit_miss += k.hit_miss;
   sum->t_differs += k.t_differs;
   sum->grazing += k.grazing;
+  sum->at_origin += k.at_origin;
   sum->t_guard += k.t_guard;
   sum->reference_wrong += k.reference_wrong;
   sum->other_wrong += k.other_wrong;
@@ -33,6 +35,10 @@ ExactTriangleHit Exact(const TriangleSoup& soup, const Ray& ray, const Hit& h) {
 
 bool Grazing(const ExactTriangleHit& e) {
   return e.edge_distance <= kGrazingUlps * FloatUlp(e.magnitude);
+}
+
+bool AtOrigin(const ExactTriangleHit& e) {
+  return e.plane_distance <= kGrazingUlps * FloatUlp(e.magnitude);
 }
 
 // The watertight test alone on one triangle.
@@ -101,6 +107,9 @@ Disagreements CompareTracers(const std::vector<RayRecord>& records, const Triang
     if ((a.hit() && Grazing(ea)) || (b.hit() && Grazing(eb))) {
       ++k.grazing;
       continue;
+    } else if ((a.hit() && AtOrigin(ea)) || (b.hit() && AtOrigin(eb))) {
+      ++k.at_origin;
+      cls = "at_origin";
     } else if (!ref_claims && claim_right && !WatertightHits(soup, ray, claim.tri)) {
       ++k.t_guard;
       cls = "t_guard";
@@ -109,10 +118,11 @@ Disagreements CompareTracers(const std::vector<RayRecord>& records, const Triang
       auto show = [](const Hit& h, const ExactTriangleHit& e) {
         if (!h.hit()) return std::string("miss");
         return absl::StrFormat(
-            "tri %d t %.9g u %.6g v %.6g (exact: %s, t %.9g, edge distance %.3g = %.3g ulps of "
-            "%.6g)",
+            "tri %d t %.9g u %.6g v %.6g (exact: %s, t %.9g; edge distance %.3g, origin-plane "
+            "distance %.3g = %.3g, %.3g ulps of %.6g)",
             h.tri, h.t, h.u, h.v, e.hit ? "hit" : "no hit", e.t, e.edge_distance,
-            e.edge_distance / FloatUlp(e.magnitude), e.magnitude);
+            e.plane_distance, e.edge_distance / FloatUlp(e.magnitude),
+            e.plane_distance / FloatUlp(e.magnitude), e.magnitude);
       };
       d.examples.push_back(absl::StrFormat(
           "record %d (%s, pixel %d) %s: %s %s; %s %s; recorded hit %d; wrong: %s", i,

@@ -15,7 +15,12 @@
 //            to the origin already rounds by up to half an ulp of M, and each
 //            test's own arithmetic adds a few more, so two correct float
 //            tracers may legitimately differ there.
-//   t_guard  not grazing; a triangle exactly hit in the ray's t range that
+//   at_origin not grazing; the ray origin lies within 4 ulps of M of the
+//            plane of one of those triangles (distance across the plane), so
+//            the sign of t on that triangle is within float rounding: a ray
+//            just spawned from a surface, meeting a neighbouring triangle
+//            whose plane passes through its origin's rounding box.
+//   t_guard  neither; a triangle exactly hit in the ray's t range that
 //            the reference missed, and that the watertight test
 //            (cc/geometry/watertight.h) rejects on its own: only its
 //            conservative "t above its rounding bound" rule (PBRT 3rd ed.
@@ -46,11 +51,12 @@ struct KindDisagreements {
   uint64_t hit_miss = 0;   // one hits (or is occluded), the other not
   uint64_t t_differs = 0;  // primary, both hit, t beyond 1e-4 relative
   uint64_t grazing = 0;    // of hit_miss + t_differs: passes within 4 ulps of an edge
+  uint64_t at_origin = 0;  // of the rest: origin within 4 ulps of a reported triangle's plane
   uint64_t t_guard = 0;    // of the rest: an exact hit rejected by the watertight t bound
   uint64_t reference_wrong = 0;  // exact verdict: the reference tracer is wrong
   uint64_t other_wrong = 0;      // exact verdict: the other tracer is wrong
   uint64_t total() const { return hit_miss + t_differs; }
-  uint64_t other() const { return total() - grazing - t_guard; }
+  uint64_t other() const { return total() - grazing - at_origin - t_guard; }
 };
 
 struct Disagreements {
@@ -58,7 +64,7 @@ struct Disagreements {
   KindDisagreements all;
   // Up to 20 examples of non-grazing disagreements (record index and values).
   std::vector<std::string> examples;
-  // One JSON object: {"rays", "total", "grazing", "t_guard", "other",
+  // One JSON object: {"rays", "total", "grazing", "at_origin", "t_guard", "other",
   // "hit_miss", "t_differs", "reference_wrong", "other_wrong",
   // "primary": {...}, "shadow": {...}, "ao": {...}}.
   std::string ToJson() const;

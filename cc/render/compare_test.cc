@@ -50,6 +50,20 @@ class MissesTriangleZero : public Tracer {
   const TriangleSoup& soup_;
 };
 
+// Claims a hit on triangle 0 at a tiny t for every ray, as Embree does on the
+// ray of the test below (its own rounding of t).
+class ClaimsTriangleZero : public Tracer {
+ public:
+  std::string name() const override { return "claims"; }
+  Hit Intersect(const Ray&) const override {
+    Hit h;
+    h.tri = 0;
+    h.t = 2.44193465e-08f;
+    return h;
+  }
+  bool Occluded(const Ray&) const override { return true; }
+};
+
 RayRecord Record(const Ray& ray, RayKind kind, const Tracer& tracer) {
   RayRecord rec;
   rec.origin = ray.origin;
@@ -123,6 +137,37 @@ TEST(Compare, HitJustOutsideAnEdgeIsGrazing) {
   EXPECT_EQ(d.all.grazing, 1u) << d.ToJson();
   EXPECT_EQ(d.all.other(), 0u);
   EXPECT_EQ(d.all.reference_wrong, 1u);
+}
+
+// A real shadow ray of stk-ravenbridge-mansion (pruning preset): it was spawned
+// from a surface and meets the plane of a long sliver triangle of the same
+// wall exactly at t = -2.16e-7, behind its origin, within a few ulps of it.
+// Embree reported a hit at t = 2.44e-8; the watertight test and exact
+// arithmetic say: not occluded. That is "at_origin", and the other tracer is
+// the wrong one.
+TEST(Compare, CrossingWithinRoundingOfTheOriginIsAtOrigin) {
+  TriangleSoup soup;
+  soup.Add(Vec3(-173.437683f, 582.959717f, 302.369965f), Vec3(58.429287f, 68.1206436f, 354.512726f),
+           Vec3(57.8742981f, 67.8721542f, 354.540558f));
+  Ray ray;
+  ray.origin = Vec3(-106.17572f, 433.502747f, 317.507294f);
+  ray.dir = Vec3(737.5047f, 1137.07715f, 681.758667f);
+  ray.tmin = 0.0f;
+  ray.tmax = 1.0f;
+  const ExactTriangleHit e = ExactIntersect(ray, soup.a(0), soup.b(0), soup.c(0));
+  EXPECT_FALSE(e.hit);
+  EXPECT_LT(e.t, 0.0);
+  EXPECT_LE(e.plane_distance, kGrazingUlps * FloatUlp(e.magnitude));
+  EXPECT_GT(e.edge_distance, 100 * FloatUlp(e.magnitude));  // not grazing
+  const BruteForce bf(soup);
+  const BruteForceTracer watertight(bf);
+  EXPECT_FALSE(watertight.Occluded(ray));
+  const Disagreements d = CompareTracers({Record(ray, RayKind::kShadow, watertight)}, soup,
+                                         watertight, ClaimsTriangleZero());
+  EXPECT_EQ(d.all.total(), 1u) << d.ToJson();
+  EXPECT_EQ(d.all.at_origin, 1u) << d.ToJson();
+  EXPECT_EQ(d.all.other(), 0u);
+  EXPECT_EQ(d.all.other_wrong, 1u);
 }
 
 // A tracer that loses a triangle disagrees far from any edge: "other", and

@@ -146,8 +146,11 @@ ExactTriangleHit ExactIntersect(const Ray& ray, const Vec3& a, const Vec3& b, co
   // Rounded t, for reports.
   const V3 dd{ray.dir.x, ray.dir.y, ray.dir.z};
   const V3 la = Sub(a, o), lb = Sub(b, o), lc = Sub(c, o);
-  const LD ldet = Dot(dd, Cross(Sub(b, a), Sub(c, a)));
-  out.t = ldet != 0 ? static_cast<double>(Dot(la, Cross(lb, lc)) / ldet) : 0.0;
+  const V3 n = Cross(Sub(b, a), Sub(c, a));
+  const LD ldet = Dot(dd, n);
+  const LD lnum = Dot(la, Cross(lb, lc));
+  out.t = ldet != 0 ? static_cast<double>(lnum / ldet) : 0.0;
+  out.plane_distance = Norm(n) > 0 ? static_cast<double>(std::fabs(lnum) / Norm(n)) : 0.0;
   if (!inside || sdet == 0) return out;
   // tmin < t <= tmax, i.e. (num - tmin det) sdet > 0 and (tmax det - num) sdet >= 0.
   auto scaled = [&](float s) {

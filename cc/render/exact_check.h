@@ -34,6 +34,9 @@ struct ExactTriangleHit {
   // nearest edge, measured across the ray, so a grazing angle does not hide a
   // close pass.
   double edge_distance = 0;
+  // Distance from the ray origin to the triangle's plane (world units,
+  // rounded): how far the origin is from the point where t changes sign.
+  double plane_distance = 0;
   // max |coordinate| of the ray origin and the three vertices.
   double magnitude = 0;
 };

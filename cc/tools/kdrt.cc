@@ -311,13 +311,15 @@ absl::Status Run() {
         "{\"quality\": %s, \"T_B\": %s, \"T_B_runs\": %s, \"T_R\": %s, \"T_R_runs\": %s, "
         "\"perf_krays\": %s, \"all_rays_per_s\": %s, \"P_hit\": %d, \"P_miss\": %d, \"S_hit\": %d, "
         "\"S_miss\": %d, \"effects\": {%s, %s, %s}, \"disagreements\": %d, "
-        "\"disagreements_grazing\": %d, \"disagreements_t_guard\": %d, \"disagreements_other\": %d, "
+        "\"disagreements_grazing\": %d, \"disagreements_at_origin\": %d, \"disagreements_t_guard\": %d, "
+        "\"disagreements_other\": %d, "
         "\"perf_ratio_kd_over_embree\": %s}",
         JsonQuote(EmbreeQualityName(*quality)), JsonNumber(Median(eb_runs)), Array(eb_runs),
         JsonNumber(e_tr), Array(et.t_r), JsonNumber(pixels / e_tr / 1000.0),
         JsonNumber(er.total_rays() / e_tr), er.p_hit, er.p_miss, er.s_hit, er.s_miss,
         EffectJson("primary", er.primary.rays, et.t_primary), EffectJson("shadow", er.shadow.rays, et.t_shadow),
-        EffectJson("ao", er.ao.rays, et.t_ao), d.all.total(), d.all.grazing, d.all.t_guard, d.all.other(), ratio_json);
+        EffectJson("ao", er.ao.rays, et.t_ao), d.all.total(), d.all.grazing, d.all.at_origin, d.all.t_guard, d.all.other(),
+        ratio_json);
   }
   progress.Done();
 
