@@ -18,7 +18,11 @@ the simple loaders, for .ply/.obj/.off) can read. Sources, by manifest `kind`:
   npm        npm tarball: `npm pack`, kept in data/cache/npm/; .gz members are
              decompressed; `convert: teapot-js` turns positions/cells into PLY.
   blender    Blender headless (Suzanne, the report's scene 18), exported as OBJ.
-  generator  //cc/scenes:generate (deterministic: same seed and size, same bytes).
+  generator  //cc/scenes:generate (deterministic: same seed and size, same bytes);
+             `generator.parts`: packaged models instanced by the plant and
+             courtyard generators, converted once (data/parts.py).
+  convert    q3-bsp (a Quake 3 map in a .pk3, our reader) and assimp-ply (any
+             assimp format, flattened to PLY), child processes (data/parts.py).
   url        The report's original file from McGuire's archive, only when the
              network allows; otherwise skipped with a message (`optional`).
 Every obtained file is checked with //cc/scenes:mesh_info (assimp, flattened
@@ -51,6 +55,9 @@ import zipfile
 from pathlib import Path
 
 from tqdm import tqdm
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import parts  # noqa: E402  (data/parts.py: conversions, generator parts)
 
 REPO = Path(__file__).resolve().parent.parent
 DATA = REPO / "data"
@@ -243,11 +250,12 @@ class Tools:
 
     def ensure(self):
         if self.bin is None and self.error is None:
-            log(f"building //cc/scenes:generate, :mesh_info and :stk_track "
+            log(f"building //cc/scenes:generate, :mesh_info, :stk_track and :q3_bsp_tool "
                 f"(bazel -c {self.mode}) ...")
             try:
                 run(["bazel", "build", "-c", self.mode, "//cc/scenes:generate",
-                     "//cc/scenes:mesh_info", "//cc/scenes:stk_track"], cwd=REPO,
+                     "//cc/scenes:mesh_info", "//cc/scenes:stk_track",
+                     "//cc/scenes:q3_bsp_tool"], cwd=REPO,
                     what="bazel build")
                 out = run(["bazel", "info", "-c", self.mode, "bazel-bin"], cwd=REPO,
                           what="bazel info")
@@ -413,17 +421,41 @@ def fetch_package(entry, dest, stats, tools):
     if entry.get("convert") == "stk-track":
         fetch_stk_track(entry, deb, dest, tools)
         return
+    convert = entry.get("convert")
+    if convert in ("q3-bsp", "assimp-ply"):
+        # The packaged file goes to a temporary file, the converter writes dest.
+        raw = TMP / f"{entry['name']}-raw{Path(entry.get('member') or entry['path']).suffix}"
+        try:
+            if entry.get("member"):
+                extract_member(ensure_archive(entry["package"], entry["path"], stats),
+                               entry["member"], raw)
+            else:
+                extract_from_deb(deb, entry["path"], raw)
+            info = (parts.q3_bsp_to_ply if convert == "q3-bsp" else parts.assimp_to_ply)(
+                tools, raw, dest, SceneError)
+            log(f"  {convert}: {info.get('triangles', '?')} triangles written"
+                + (f", {info['dropped']} malformed pieces dropped" if info.get("dropped") else ""))
+        finally:
+            raw.unlink(missing_ok=True)
+        return
     if not entry.get("member"):
         extract_from_deb(deb, entry["path"], dest)
         return
-    # The archive inside the package is kept, for the other scenes it holds.
-    archive = EXTRACTED / entry["package"] / entry["path"]
+    extract_member(ensure_archive(entry["package"], entry["path"], stats), entry["member"], dest)
+
+
+def ensure_archive(package, path, stats):
+    """An archive inside a package (a .pk3, .zip, .sh3f, .tar.gz), taken out
+    once into data/cache/extracted/ and kept for the other scenes it holds."""
+    archive = EXTRACTED / package / path
     if not archive.exists():
+        deb = ensure_deb(package, stats)
         archive.parent.mkdir(parents=True, exist_ok=True)
         part = archive.with_name(archive.name + ".part")
-        extract_from_deb(deb, entry["path"], part)
+        log(f"taking {path} out of {deb.name} ...")
+        extract_from_deb(deb, path, part)
         os.replace(part, archive)
-    extract_member(archive, entry["member"], dest)
+    return archive
 
 
 def teapot_js_to_ply(js_text, dest):
@@ -503,6 +535,10 @@ def fetch_generator(entry, dest, stats, tools, cache_paths):
         cmd.append(f"--input={path}")
         if g.get("input_up_axis"):
             cmd.append(f"--input_up_axis={g['input_up_axis']}")
+    if g.get("parts"):
+        cmd.append("--parts=" + ",".join(
+            parts.prepare_parts(entry, sys.modules[__name__], tools, stats, cache_paths)))
+    log(f"  generating {g['kind']} ({g['triangles']:,} triangles, seed {g['seed']}) ...")
     run(cmd, what=f"generate --kind={g['kind']}")
 
 
@@ -553,6 +589,8 @@ def select(manifest, profile, names):
         g = e.get("generator") or {}
         if g.get("input"):
             add(by_name[g["input"]])
+        for name in parts.part_scenes(e):
+            add(by_name[name])
         ordered.append(e)
 
     for e in chosen:

@@ -24,7 +24,8 @@ REPORT_SCENES = {
 }
 KINDS = {"package", "npm", "generator", "blender", "url"}
 ROLES = {"original", "stand-in", "variant", "extra"}
-GENERATOR_KINDS = {"hairball", "voxel", "teapots", "city", "forest", "subdivide"}
+GENERATOR_KINDS = {"hairball", "voxel", "teapots", "city", "forest", "subdivide", "refine", "plant",
+                   "courtyard"}
 FIELDS = {
     "name", "report_scene", "report_name", "role", "kind", "package", "npm_version", "path",
     "member", "url", "convert", "generator", "format", "licence", "source",
@@ -33,7 +34,7 @@ FIELDS = {
 }
 FORMATS = {"obj", "ply", "off", "blend", "glb", "ac"}
 # Conversions fetch.py applies (None: the file is used as packaged).
-CONVERTS = {None, "teapot-js", "stk-track"}
+CONVERTS = {None, "teapot-js", "stk-track", "q3-bsp", "assimp-ply"}
 
 
 def is_vec3(v):
@@ -155,6 +156,12 @@ class ManifestTest(unittest.TestCase):
                                          + r"tracks/[a-z0-9_]+/scene\.xml$")
                         self.assertIsNone(s["member"])
                         self.assertEqual(s["format"], "ply")
+                    elif s["convert"] == "q3-bsp":  # a map inside a .pk3 -> PLY (our reader)
+                        self.assertTrue(s["path"].endswith(".pk3"))
+                        self.assertRegex(s["member"], r"^maps/[^/]+\.bsp$")
+                        self.assertEqual(s["format"], "ply")
+                    elif s["convert"] == "assimp-ply":  # any assimp format -> PLY
+                        self.assertEqual(s["format"], "ply")
                     else:
                         self.assertIsNone(s["convert"])
                         target = s["member"] or s["path"]
@@ -169,10 +176,26 @@ class ManifestTest(unittest.TestCase):
                     self.assertIsInstance(g["seed"], int)
                     self.assertGreater(g["triangles"], 0)
                     self.assertEqual(s["format"], "ply")
-                    if g["kind"] in ("teapots", "subdivide"):
+                    if g["kind"] in ("teapots", "subdivide", "refine"):
                         self.assertIn(g.get("input"), names)
                         # The input is fetched in every profile that needs it.
                         self.assertTrue(set(s["profiles"]) <= set(names[g["input"]]["profiles"]))
+                    if g["kind"] in ("plant", "courtyard"):
+                        self.assertTrue(g["parts"])
+                        roles = {p["role"] for p in g["parts"]}
+                        self.assertIn("machine" if g["kind"] == "plant" else "tree", roles)
+                        for p in g["parts"]:
+                            self.assertGreater(p["height"], 0)
+                            if "scene" in p:
+                                self.assertIn(p["scene"], names)
+                                self.assertTrue(set(s["profiles"])
+                                                <= set(names[p["scene"]]["profiles"]))
+                            else:
+                                self.assertRegex(p["package"], debian_name)
+                                self.assertIn(p["package"], s["licence"] + " " + p["package"])
+                                self.assertFalse(p["path"].startswith("/"))
+                    if g["kind"] in ("refine", "plant", "courtyard"):  # exact by construction
+                        self.assertEqual(s["expected_triangles"], g["triangles"])
                     if g["kind"] in ("hairball", "city", "forest"):  # these hit their target
                         self.assertLessEqual(abs(s["expected_triangles"] - g["triangles"]),
                                              0.01 * g["triangles"])
@@ -189,11 +212,13 @@ class ManifestTest(unittest.TestCase):
 
     def test_big_packages_only_in_full(self):
         for s in self.scenes:
-            if s["package"] in ("flightgear-data-base", "nexuiz-data"):
+            parts = (s["generator"] or {}).get("parts", [])
+            if s["package"] == "flightgear-data-base" or any(
+                    p.get("package") == "flightgear-data-base" for p in parts):
                 self.assertEqual(s["profiles"], ["full"], s["name"])
             # SuperTuxKart (628 MB) holds the real forest, city, interior and plants
-            # tracks: standard and full, never quick or test.
-            if s["package"] == "supertuxkart-data":
+            # tracks, Nexuiz (267 MB) the sponza stand-in: standard and full only.
+            if s["package"] in ("supertuxkart-data", "nexuiz-data"):
                 self.assertEqual(s["profiles"], ["standard", "full"], s["name"])
             if s["kind"] == "url":
                 self.assertEqual(s["profiles"], ["full"], s["name"])
@@ -239,6 +264,19 @@ class ManifestTest(unittest.TestCase):
                     self.assertLess(order.index(g["input"]), order.index(s["name"]))
         names = [s["name"] for s in fetch.select(self.manifest, "full", ["teapots"])]
         self.assertEqual(names, ["teapot", "teapots"])
+        # A generator's parts that are scenes come first too.
+        for s in self.scenes:
+            for name in fetch.parts.part_scenes(s):
+                order = [e["name"] for e in fetch.select(self.manifest, "full", [s["name"]])]
+                self.assertLess(order.index(name), order.index(s["name"]))
+
+    def test_every_report_scene_has_a_stand_in_in_full(self):
+        # The full profile's Table 1: one stand-in (or the original) per report
+        # scene, obtainable offline (not a url).
+        for n in REPORT_SCENES:
+            rows = [s for s in self.scenes if s["report_scene"] == n and "full" in s["profiles"]
+                    and s["role"] in ("stand-in", "original") and s["kind"] != "url"]
+            self.assertTrue(rows, f"report scene {n} has no offline stand-in in full")
 
 
 class PlainCounterTest(unittest.TestCase):
@@ -275,6 +313,36 @@ class PlainCounterTest(unittest.TestCase):
                                 b"property list uchar int vertex_indices\nend_header\n"
                                 b"0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
         self.assertEqual(fetch.count_plain(p), 1)
+
+
+class PartsTest(unittest.TestCase):
+    """data/parts.py: the pieces that need no package or tool."""
+
+    def setUp(self):
+        self.dir = Path(os.environ.get("TEST_TMPDIR", "/tmp"))
+
+    def test_part_key_depends_on_source_only(self):
+        a = {"role": "tree", "height": 5, "package": "p", "path": "x.sh3f", "member": "a/a.obj"}
+        b = dict(a, role="plant", height=1)
+        self.assertEqual(fetch.parts.part_key(a), fetch.parts.part_key(b))
+        self.assertNotEqual(fetch.parts.part_key(a),
+                            fetch.parts.part_key(dict(a, member="b/b.obj")))
+
+    def test_model_and_its_materials_taken_out_of_a_catalogue(self):
+        import zipfile
+        archive = self.dir / "cat.sh3f"
+        with zipfile.ZipFile(archive, "w") as z:
+            z.writestr("lib/tree/tree.obj", "v 0 0 0\n")
+            z.writestr("lib/tree/tree.mtl", "newmtl a\n")
+            z.writestr("lib/tree/sub/skip.png", "x")
+            z.writestr("lib/other/other.obj", "v 1 1 1\n")
+        out = fetch.parts.extract_model_dir(archive, "/lib/tree/tree.obj", self.dir / "tree",
+                                            fetch.SceneError)
+        self.assertEqual(out.read_text(), "v 0 0 0\n")
+        self.assertEqual(sorted(p.name for p in out.parent.iterdir()), ["tree.mtl", "tree.obj"])
+        with self.assertRaises(fetch.SceneError):
+            fetch.parts.extract_model_dir(archive, "lib/none.obj", self.dir / "n",
+                                          fetch.SceneError)
 
 
 if __name__ == "__main__":
