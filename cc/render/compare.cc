@@ -38,7 +38,7 @@ bool Grazing(const ExactTriangleHit& e) {
 }
 
 bool AtOrigin(const ExactTriangleHit& e) {
-  return e.plane_distance <= kGrazingUlps * FloatUlp(e.magnitude);
+  return e.plane_distance <= kAtOriginUlps * FloatUlp(e.magnitude);
 }
 
 // The watertight test alone on one triangle.

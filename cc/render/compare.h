@@ -15,11 +15,15 @@
 //            to the origin already rounds by up to half an ulp of M, and each
 //            test's own arithmetic adds a few more, so two correct float
 //            tracers may legitimately differ there.
-//   at_origin not grazing; the ray origin lies within 4 ulps of M of the
-//            plane of one of those triangles (distance across the plane), so
-//            the sign of t on that triangle is within float rounding: a ray
-//            just spawned from a surface, meeting a neighbouring triangle
-//            whose plane passes through its origin's rounding box.
+//   at_origin not grazing; the ray origin lies within kAtOriginUlps = 8 ulps
+//            of M of the plane of one of those triangles (distance across the
+//            plane), so the sign of t on that triangle is within float
+//            rounding: a ray just spawned from a surface, meeting a
+//            neighbouring triangle whose plane passes through its origin's
+//            rounding box. (8, not 4: the rounding of t grows with the
+//            distance of the vertices from the origin, and for long sliver
+//            triangles those are all of M; the Embree self-hits seen on
+//            stk-ravenbridge-mansion lie at 2.8 to 4.8 ulps.)
 //   t_guard  neither; a triangle exactly hit in the ray's t range that
 //            the reference missed, and that the watertight test
 //            (cc/geometry/watertight.h) rejects on its own: only its
@@ -45,13 +49,14 @@ namespace kdtree {
 
 inline constexpr float kCompareRelT = 1e-4f;
 inline constexpr double kGrazingUlps = 4.0;
+inline constexpr double kAtOriginUlps = 8.0;
 
 struct KindDisagreements {
   uint64_t rays = 0;
   uint64_t hit_miss = 0;   // one hits (or is occluded), the other not
   uint64_t t_differs = 0;  // primary, both hit, t beyond 1e-4 relative
   uint64_t grazing = 0;    // of hit_miss + t_differs: passes within 4 ulps of an edge
-  uint64_t at_origin = 0;  // of the rest: origin within 4 ulps of a reported triangle's plane
+  uint64_t at_origin = 0;  // of the rest: origin within 8 ulps of a reported triangle's plane
   uint64_t t_guard = 0;    // of the rest: an exact hit rejected by the watertight t bound
   uint64_t reference_wrong = 0;  // exact verdict: the reference tracer is wrong
   uint64_t other_wrong = 0;      // exact verdict: the other tracer is wrong
