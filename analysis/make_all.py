@@ -33,6 +33,7 @@ from analysis import kdtree_tables  # noqa: E402
 from analysis import latex  # noqa: E402
 from analysis import machine  # noqa: E402
 from analysis import planar  # noqa: E402
+from analysis import robustness  # noqa: E402
 from analysis import row18  # noqa: E402
 from analysis import seed_tables  # noqa: E402
 from analysis import table1  # noqa: E402
@@ -50,6 +51,7 @@ GENERATORS = [
     claims,
     embree,
     accuracy,
+    robustness,
     # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
 ]
 

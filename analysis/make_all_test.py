@@ -5,6 +5,7 @@ import unittest
 
 from analysis import accuracy
 from analysis import make_all
+from analysis import robustness
 from analysis import row18
 from analysis import testdata
 
@@ -23,7 +24,7 @@ EXPECTED_MACROS = [
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
     "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements"
-] + accuracy.MACROS
+] + robustness.MACROS + accuracy.MACROS
 
 
 class MakeAllTest(unittest.TestCase):

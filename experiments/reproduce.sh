@@ -61,6 +61,16 @@ step "in-plane triangles: seed-compatible vs default mode on a voxel world"
 "$PY" experiments/planar.py --kdrt "$BIN/cc/tools/kdrt" --out "$OUT" || \
   echo "reproduce: some planar runs failed (see above)" >&2
 
+step "robustness: the adversarial suite and what the watertight test costs"
+# The suite (deterministic) is rerun every time; robust.jsonl is replaced.
+# The cost bench skips (scene, preset) runs already in robust_cost.jsonl.
+bazel build --config=opt //cc/robust:robust_suite //cc/robust:robust_cost_bench
+ROBUST_BIN="$(bazel info --config=opt bazel-bin)/cc/robust"
+"$ROBUST_BIN/robust_suite" --out "$RESULTS/robust.jsonl" \
+  --cost_bench "$ROBUST_BIN/robust_cost_bench" \
+  --cost_out "$RESULTS/robust_cost.jsonl" --profile "$PROFILE" || \
+  echo "reproduce: some robustness runs failed (see above)" >&2
+
 step "accuracy versus time: what each step of tree accuracy costs ($PROFILE)"
 # experiments/accuracy.json; resumable (finished (scene, step) runs are skipped).
 "$PY" experiments/accuracy.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \

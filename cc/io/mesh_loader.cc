@@ -12,7 +12,9 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,7 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "cc/io/mesh_syntax.h"
 
 namespace kdtree {
 namespace {
@@ -104,6 +107,18 @@ absl::Status ReadGzip(const std::string& path, std::string* out) {
     return FileError(absl::StatusCode::kInvalidArgument, path,
                      "file is empty after gzip decompression");
   }
+  return absl::OkStatus();
+}
+
+// Reads a whole (uncompressed) file into `out`.
+absl::Status ReadWholeFile(const std::string& path, std::string* out) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (!in.good() && !in.eof()) {
+    return FileError(absl::StatusCode::kUnavailable, path, "cannot read file");
+  }
+  *out = std::move(ss).str();
   return absl::OkStatus();
 }
 
@@ -274,8 +289,17 @@ absl::StatusOr<TriangleSoup> LoadMeshImpl(const std::string& path, const LoadOpt
       std::string data;
       if (absl::Status s = ReadGzip(path, &data); !s.ok()) return s;
       const std::string hint = Extension(path.substr(0, path.size() - 3));
+      if (absl::Status s = CheckMeshSyntax(data, hint, path); !s.ok()) return s;
       scene = importer.ReadFileFromMemory(data.data(), data.size(), 0, hint.c_str());
     } else {
+      // OBJ, OFF and PLY are checked first (mesh_syntax.h): assimp accepts or
+      // aborts on some malformed files of these formats.
+      const std::string ext = Extension(path);
+      if (ext == "obj" || ext == "off" || ext == "ply") {
+        std::string data;
+        if (absl::Status s = ReadWholeFile(path, &data); !s.ok()) return s;
+        if (absl::Status s = CheckMeshSyntax(data, ext, path); !s.ok()) return s;
+      }
       scene = importer.ReadFile(path, 0);
     }
     // Post-processing trusts the importer's indices (assimp 5.2's Triangulate

@@ -12,6 +12,9 @@
 // vertex format, then by node-graph traversal), so for multi-material files
 // "scene order" is material order.
 //
+// OBJ, OFF and PLY files (also gzipped) are first checked by CheckMeshSyntax
+// (mesh_syntax.h), whose errors name file, line (or byte) and reason.
+//
 // Filtering (the kd-tree never sees NaN): faces with fewer than 3 indices
 // (points, lines) are skipped; triangles with a NaN/Inf coordinate or one with
 // |c| > 1e30 are always dropped; exactly degenerate triangles (collinear or

@@ -1,0 +1,43 @@
+#include "cc/io/mesh_fuzz.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+#include "cc/io/mesh_loader.h"
+#include "cc/io/mesh_syntax.h"
+
+namespace kdtree {
+
+const char* FuzzFormat(uint8_t selector) {
+  static const char* const kFormats[] = {"obj", "off", "ply"};
+  return kFormats[selector % 3];
+}
+
+size_t MeshFuzzCase(const uint8_t* data, size_t size, const std::string& tmp_dir) {
+  if (size == 0) return 0;
+  const std::string format = FuzzFormat(data[0]);
+  const absl::string_view bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
+  (void)CheckMeshSyntax(bytes, format, "fuzz");  // must not crash on its own
+  const std::string path = absl::StrCat(tmp_dir, "/mesh_fuzz_", getpid(), ".", format);
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) return 1;
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+  std::fclose(f);
+  if (!written) return 1;
+  LoadReport report;
+  const absl::StatusOr<TriangleSoup> soup = LoadMesh(path, &report);
+  std::remove(path.c_str());
+  if (!soup.ok()) return soup.status().message().find(path) == absl::string_view::npos;
+  size_t broken = report.triangles != soup->size();
+  for (size_t i = 0; i < soup->size(); ++i) {
+    broken += !IsSaneTriangle(soup->a(i), soup->b(i), soup->c(i)) ||
+              IsDegenerateTriangle(soup->a(i), soup->b(i), soup->c(i));
+  }
+  return broken;
+}
+
+}  // namespace kdtree
