@@ -31,6 +31,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/flags/flag.h"
@@ -82,6 +83,7 @@ std::string Array(const std::vector<double>& v) {
 }
 
 struct Entry {
+  Entry(std::string n, const Tracer* t) : name(std::move(n)), tracer(t) {}
   std::string name;
   const Tracer* tracer;
   std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
@@ -150,11 +152,11 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   std::vector<Entry> proto;
   for (const std::string& v : variants) {
     if (v == "kd") {
-      proto.push_back({v, &kd, {}});
+      proto.emplace_back(v, &kd);
     } else if (v == "kd_index") {
-      proto.push_back({v, &kd_index, {}});
+      proto.emplace_back(v, &kd_index);
     } else if (v == "kd_mailbox") {
-      proto.push_back({v, &kd_mailbox, {}});
+      proto.emplace_back(v, &kd_mailbox);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
@@ -195,7 +197,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       if (!e.ok()) return e.status();
       embree = *std::move(e);
       disagree = CompareTracers(recorded.rays, *soup, kd, *embree).ToJson();
-      entries.push_back({"embree", embree.get(), {}});
+      entries.emplace_back("embree", embree.get());
     }
     RenderOptions topt = ropt;
     topt.threads = threads;
