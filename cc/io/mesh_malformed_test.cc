@@ -202,7 +202,9 @@ TEST(MalformedMesh, CheckedOnTheBytesWhateverTheirSource) {
     const std::string ext = c.name.substr(c.name.rfind('.') + 1);
     const absl::Status s = CheckMeshSyntax(c.bytes, ext, c.name);
     EXPECT_EQ(s.ok(), c.where.empty()) << c.name << ": " << s;
-    if (!c.where.empty()) EXPECT_NE(s.message().find(c.where), absl::string_view::npos) << s;
+    if (!c.where.empty()) {
+      EXPECT_NE(s.message().find(c.where), absl::string_view::npos) << s;
+    }
   }
   EXPECT_TRUE(CheckMeshSyntax("anything", "glb", "x.glb").ok());
 }
