@@ -113,6 +113,11 @@ def main(argv=None):
     parser.add_argument("--index", default=scene_runner.DEFAULT_INDEX)
     parser.add_argument("--scenes", default="",
                         help="comma-separated subset of the profile's scenes")
+    parser.add_argument("--knobs", default="",
+                        help="comma-separated subset of the knobs")
+    parser.add_argument("--force", action="store_true",
+                        help="run again steps already recorded (the analysis "
+                        "keeps the newest record)")
     args = parser.parse_args(argv)
     with open(args.study, encoding="utf-8") as f:
         study = json.load(f)
@@ -128,6 +133,11 @@ def main(argv=None):
     results_path = os.path.join(results_dir, RESULTS_FILE)
     done = run_matrix.done_keys(results_path)
     profile = study["profiles"][args.profile]
+    knobs = [k for k in args.knobs.split(",") if k]
+    if knobs:
+        jobs = [(sc, st) for sc, st in jobs if st["knob"] in knobs]
+    if args.force:
+        done = set()
     failed = 0
     for i, (scene, step) in enumerate(jobs):
         if tuple(job_key(scene, step, profile["repeats"])) in done:

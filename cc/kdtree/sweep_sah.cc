@@ -1,6 +1,7 @@
 #include "cc/kdtree/sweep_sah.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "cc/kdtree/sah_cost.h"
@@ -45,7 +46,19 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, const 
   std::sort(events->begin(), events->end());
   const uint64_t* e = events->data();
   const size_t count = events->size();
+  auto consider = [&](float plane, size_t nl, size_t nr) {
+    if (!(plane > box_lo && plane < box_hi)) return;
+    const float cost =
+        SplitCost(box, axis, plane, static_cast<float>(nl), static_cast<float>(nr), config);
+    if (!best->found || cost < best->cost) {
+      best->found = true;
+      best->axis = axis;
+      best->pos = plane;
+      best->cost = cost;
+    }
+  };
   size_t n_left = 0, n_right = n;
+  float prev = -INFINITY;
   for (size_t i = 0; i < count;) {
     const uint64_t key = e[i] >> 2;
     size_t ends = 0, planars = 0, starts = 0;
@@ -55,19 +68,20 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, const 
       planars += type == kPlanar;
       starts += type == kStart;
     }
-    n_right -= ends + planars;
     const float plane = FromOrderedBits(static_cast<uint32_t>(key));
-    if (plane > box_lo && plane < box_hi) {
-      const float cost = SplitCost(box, axis, plane, static_cast<float>(n_left + planars),
-                                   static_cast<float>(n_right + planars), config);
-      if (!best->found || cost < best->cost) {
-        best->found = true;
-        best->axis = axis;
-        best->pos = plane;
-        best->cost = cost;
-      }
-    }
+    const float next = i < count ? FromOrderedBits(static_cast<uint32_t>(e[i] >> 2)) : INFINITY;
+    // The float just below: no event in (prev, below], so the counts are
+    // those before this position.
+    const float below = std::nextafter(plane, -INFINITY);
+    if (below > prev) consider(below, n_left, n_right);
+    n_right -= ends + planars;
+    consider(plane, n_left + planars, n_right + planars);
     n_left += starts + planars;
+    // The float just above: no event in [above, next), so the counts are
+    // those after this position (in-plane triangles on the left only).
+    const float above = std::nextafter(plane, INFINITY);
+    if (above < next) consider(above, n_left, n_right);
+    prev = plane;
   }
 }
 

@@ -9,9 +9,15 @@
 // at each distinct position P, exactly the counts the builder's partition
 // produces (builder.h):
 //   N_L = #(lo < P) + #(planar at P),  N_R = #(hi > P) + #(planar at P)
-// (in-plane triangles go to both children in the default mode). Every event
-// position strictly inside the node box is a candidate: no plane is missed,
-// unlike binning. The first strict minimum wins, axes in x, y, z order.
+// (in-plane triangles go to both children in the default mode). Candidates:
+// every event position P strictly inside the node box, and the floats just
+// below and just above P (when no other event lies there). Between two events
+// the counts are constant and the cost is linear in the position, so these
+// are all the planes that can be best: no float plane is missed, unlike
+// binning. The float just above a planar event puts the triangles lying in P
+// on the left only, the one just below on the right only (as Wald & Havran's
+// choice of side for planar triangles, with the builder's plain partition).
+// The first strict minimum wins, axes in x, y, z order.
 //
 // Complexity: this form sorts each node's events (O(N log N) per node,
 // O(N log^2 N) for the tree); it finds the same plane as the paper's O(N log N)

@@ -1,5 +1,7 @@
 #include "cc/kdtree/sweep_sah.h"
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -17,6 +19,11 @@ Split BruteForceBest(const std::vector<BuildRef>& refs, const AABB& box, const C
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<float> planes;
     for (const BuildRef& r : refs) planes.push_back(r.box.lo[axis]), planes.push_back(r.box.hi[axis]);
+    const size_t events = planes.size();
+    for (size_t i = 0; i < events; ++i) {
+      planes.push_back(std::nextafter(planes[i], -INFINITY));
+      planes.push_back(std::nextafter(planes[i], INFINITY));
+    }
     std::sort(planes.begin(), planes.end());
     planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
     for (float p : planes) {
@@ -72,9 +79,11 @@ TEST(SweepSah, FindsTheBestPlaneOfEveryEventRelaxedAndFull) {
   }
 }
 
-TEST(SweepSah, PlanarTrianglesCountOnBothSides) {
+TEST(SweepSah, PlanarTrianglesGoToTheCheaperSide) {
   // Three triangles flat in z = 1 and one box spanning z in [0, 3]. At P = 1
-  // the partition sends the flat ones to both children: N_L = 4, N_R = 4.
+  // the partition sends the flat ones to both children (N_L = N_R = 4); just
+  // above 1 they go left only (N_L = 4, N_R = 1), which is the cheapest
+  // (checked by hand: 15 + 20 (4 * 6 + 1 * 10) / 14 = 63.6 < C_leaf = 80).
   std::vector<BuildRef> refs;
   for (int i = 0; i < 3; ++i) refs.push_back({AABB({0, 0, 1}, {1, 1, 1}), uint32_t(i)});
   refs.push_back({AABB({0, 0, 0}, {1, 1, 3}), 3});
@@ -85,8 +94,9 @@ TEST(SweepSah, PlanarTrianglesCountOnBothSides) {
   const Split s = FindSweepSahSplit(refs.data(), refs.size(), box, c, &scratch);
   ASSERT_TRUE(s.found);
   EXPECT_EQ(s.axis, 2);
-  EXPECT_EQ(s.pos, 1.0f);
-  EXPECT_FLOAT_EQ(s.cost, SplitCost(box, 2, 1.0f, 4, 4, c));
+  EXPECT_EQ(s.pos, std::nextafter(1.0f, INFINITY));
+  EXPECT_FLOAT_EQ(s.cost, SplitCost(box, 2, s.pos, 4, 1, c));
+  EXPECT_LT(s.cost, SplitCost(box, 2, 1.0f, 4, 4, c));
 }
 
 TEST(SweepSah, NeverWorseThanBinning) {
@@ -107,12 +117,16 @@ TEST(SweepSah, NeverWorseThanBinning) {
   }
 }
 
-TEST(SweepSah, NoPlaneInsideAFlatOrEmptyNode) {
+TEST(SweepSah, ASplitThatSeparatesNothingNeverBeatsALeaf) {
+  // One box filling the node: every candidate keeps it on both sides or
+  // cuts a zero-width sliver; under the full SAH none is cheaper than a leaf.
   std::vector<BuildRef> refs = {{AABB({0, 0, 0}, {1, 1, 1}), 0}};
+  Config c;
+  c.full_sah = true;
   SweepScratch scratch;
-  // The only events are the box's own faces.
-  EXPECT_FALSE(FindSweepSahSplit(refs.data(), 1, AABB({0, 0, 0}, {1, 1, 1}), Config(), &scratch).found);
-  EXPECT_FALSE(FindSweepSahSplit(refs.data(), 0, AABB({0, 0, 0}, {1, 1, 1}), Config(), &scratch).found);
+  const Split s = FindSweepSahSplit(refs.data(), 1, AABB({0, 0, 0}, {1, 1, 1}), c, &scratch);
+  if (s.found) EXPECT_GE(s.cost, LeafCost(1, c));
+  EXPECT_FALSE(FindSweepSahSplit(refs.data(), 0, AABB({0, 0, 0}, {1, 1, 1}), c, &scratch).found);
 }
 
 }  // namespace
