@@ -7,6 +7,7 @@
 //
 //   clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -I. \
 //     cc/io/mesh_fuzzer.cc cc/io/mesh_fuzz.cc cc/io/mesh_loader.cc cc/io/mesh_syntax.cc \
+//     cc/io/ply_syntax.cc \
 //     -lassimp -lz $(pkg-config --libs absl_statusor absl_str_format absl_strings) \
 //     -o /tmp/mesh_fuzzer
 //   mkdir -p /tmp/mesh_corpus && /tmp/mesh_fuzzer -max_total_time=3600 -max_len=4096 \
