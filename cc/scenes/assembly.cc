@@ -5,6 +5,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_split.h"
+#include "cc/io/mesh_loader.h"
 #include "cc/scenes/ply.h"
 
 namespace kdtree {
@@ -62,7 +63,18 @@ std::vector<const Part*> PartsOf(const std::vector<Part>& parts, const std::stri
 }
 
 void Place(Mesh& out, const Mesh& part, const Vec3& position, float yaw, float scale) {
-  out.Append(part, Mat3::Rotation(1, yaw) * Mat3::Scale(scale), position);
+  const Mat3 m = Mat3::Rotation(1, yaw) * Mat3::Scale(scale);
+  const int32_t base = static_cast<int32_t>(out.vertices.size());
+  for (const Vec3& p : part.vertices) out.vertices.push_back(m * p + position);
+  for (const Mesh::Face& f : part.faces) {
+    // Triangles of zero area (many in CAD tessellations) are left out, as the
+    // loader (cc/io) drops them: the count placed is the count loaded.
+    if (IsDegenerateTriangle(out.vertices[base + f[0]], out.vertices[base + f[1]],
+                             out.vertices[base + f[2]])) {
+      continue;
+    }
+    out.AddTriangle(base + f[0], base + f[1], base + f[2]);
+  }
 }
 
 void AddTube(Mesh& out, const Vec3& a, const Vec3& b, float radius, int sides, int segments) {

@@ -40,7 +40,8 @@ absl::StatusOr<Part> ReadPart(const std::string& spec);
 std::vector<const Part*> PartsOf(const std::vector<Part>& parts, const std::string& role);
 
 // Appends `part` rotated by `yaw` (radians, about y), scaled by `scale` and
-// moved to `position` (where its bottom centre lands).
+// moved to `position` (where its bottom centre lands). Triangles of zero area
+// after the move are left out (the loader, cc/io, would drop them).
 void Place(Mesh& out, const Mesh& part, const Vec3& position, float yaw, float scale = 1);
 
 // Open tube between a and b, `sides` sides, `segments` segments along it:

@@ -1,5 +1,6 @@
 #include "cc/scenes/refine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <queue>
 #include <utility>
@@ -7,6 +8,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/inlined_vector.h"
+#include "cc/io/mesh_loader.h"
 
 namespace kdtree {
 namespace scenes {
@@ -96,9 +98,44 @@ class Refiner {
 
 }  // namespace
 
+namespace {
+
+// Drops triangles of zero area (the loader, cc/io, drops them too).
+int64_t DropDegenerate(Mesh& mesh) {
+  const size_t before = mesh.faces.size();
+  mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
+                                  [&](const Mesh::Face& f) {
+                                    return IsDegenerateTriangle(mesh.vertices[f[0]],
+                                                                mesh.vertices[f[1]],
+                                                                mesh.vertices[f[2]]);
+                                  }),
+                   mesh.faces.end());
+  return static_cast<int64_t>(before - mesh.faces.size());
+}
+
+}  // namespace
+
 Mesh RefineMesh(const RefineConfig& config, const Mesh& input) {
-  if (config.target_triangles <= static_cast<int64_t>(input.faces.size())) return input;
-  return Refiner(input).Run(config.target_triangles);
+  Mesh clean = input;
+  DropDegenerate(clean);
+  if (config.target_triangles <= static_cast<int64_t>(clean.faces.size())) return clean;
+  // Splitting a sliver can round a half to zero area; aim higher by what was
+  // lost and run again (deterministic; one extra round in practice).
+  int64_t aim = config.target_triangles;
+  for (int round = 0; round < 8; ++round) {
+    Mesh out = Refiner(clean).Run(aim);
+    const int64_t lost = DropDegenerate(out);
+    const int64_t have = static_cast<int64_t>(out.faces.size());
+    if (have == config.target_triangles) return out;
+    if (lost == 0 || have > config.target_triangles) {
+      out.faces.resize(static_cast<size_t>(std::min(have, config.target_triangles)));
+      return out;
+    }
+    aim += config.target_triangles - have;
+  }
+  Mesh out = Refiner(clean).Run(aim);
+  DropDegenerate(out);
+  return out;
 }
 
 }  // namespace scenes

@@ -10,7 +10,9 @@
 // added) and the mesh stays conforming (no T-junctions) except, at most, for
 // one last split that adds a single triangle to reach an odd remainder.
 // Splitting the longest edges first evens out triangle sizes, as a finer scan
-// of the same object would have them.
+// of the same object would have them. Triangles of zero area (in the input,
+// or made by rounding when a sliver is split) are dropped, as the loader
+// (cc/io) drops them, so that the count is also the count loaded.
 #ifndef KDTREE_CC_SCENES_REFINE_H_
 #define KDTREE_CC_SCENES_REFINE_H_
 
@@ -22,8 +24,9 @@ namespace kdtree {
 namespace scenes {
 
 struct RefineConfig {
-  // Triangles wanted; the result has exactly this many when it is at least
-  // the input's count (otherwise the input is returned unchanged).
+  // Triangles wanted; the result has exactly this many non-degenerate
+  // triangles when it is at least the input's non-degenerate count (otherwise
+  // the input's non-degenerate triangles are returned).
   int64_t target_triangles = 0;
 };
 

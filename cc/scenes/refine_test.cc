@@ -83,6 +83,19 @@ TEST(Refine, LongestEdgesFirstEvensOutSizes) {
   EXPECT_LT(longest, 4.5);  // every edge of 16 units was split at least twice
 }
 
+TEST(Refine, DegenerateTrianglesDroppedCountStillExact) {
+  Mesh in = Cube();
+  const int32_t a = in.AddVertex(Vec3(0, 0, 0)), b = in.AddVertex(Vec3(1, 0, 0)),
+                c = in.AddVertex(Vec3(2, 0, 0));
+  in.AddTriangle(a, b, c);  // collinear
+  in.AddTriangle(a, a, b);  // repeated vertex
+  RefineConfig config;
+  config.target_triangles = 400;
+  const Mesh out = RefineMesh(config, in);
+  EXPECT_EQ(out.TriangleCount(), 400u);
+  for (const auto& [edge, n] : EdgeUse(out)) EXPECT_EQ(n, 2);
+}
+
 TEST(Refine, DeterministicAndNoOpBelowInput) {
   RefineConfig c;
   c.target_triangles = 500;
