@@ -24,14 +24,16 @@
 // like IntersectTriangle so that ties are broken by Closer(). A triangle of
 // exactly zero area is never hit: when U + V + W is within rounding of zero the
 // exact test of exact_area.h decides (the shear could otherwise round collinear
-// vertices apart into a hittable sliver). And t must be conservatively positive (Pharr,
-// Jakob & Humphreys, "Physically Based Rendering", 3rd ed., 2016, section
-// 3.9.6): when the triangle spans the origin's depth, t must exceed a bound on
-// its own rounding error, so a ray leaving a surface never hits that surface
-// again because of rounding, which is what makes spawn.h's offsets sufficient.
-// (pbrt applies the bound to every hit; it is loose for grazing rays and would
-// reject real hits there, breaking watertightness, so it is skipped when all
-// three vertices are clearly in front of the origin: then t > 0 for sure.)
+// vertices apart into a hittable sliver). And t > tmin must be right where
+// rounding could get it wrong: when the triangle spans the origin's depth and
+// t is within the bound on its rounding error (Pharr, Jakob & Humphreys,
+// "Physically Based Rendering", 3rd ed., 2016, section 3.9.6) of tmin, the
+// sign of t - tmin is decided in exact arithmetic (exact_t.h). So a ray
+// leaving a surface never hits that surface again (spawn.h puts its origin on
+// the right side exactly), and a real occluder close to the origin is never
+// skipped (pbrt rejects every hit below the bound, which is loose for large or
+// sliver triangles and lost real occluders). When all three vertices are
+// clearly in front of the origin, t > 0 for sure and the bound is skipped.
 //
 // Requires -ffp-contract=off (set in .bazelrc): a fused multiply-add would
 // break the exact negation of shared edge functions.
@@ -43,6 +45,7 @@
 #include <limits>
 
 #include "cc/geometry/exact_area.h"
+#include "cc/geometry/exact_t.h"
 #include "cc/geometry/float_bits.h"
 #include "cc/geometry/ray.h"
 #include "cc/geometry/vec3.h"
@@ -55,6 +58,7 @@ struct WatertightRay {
   int kx, ky, kz;
   float ox, oy, oz;  // origin[kx], origin[ky], origin[kz]
   float sx, sy, sz;
+  Vec3 origin, dir;  // the ray as given, for the exact t test (exact_t.h)
 };
 
 namespace watertight_internal {
@@ -87,6 +91,8 @@ inline WatertightRay MakeWatertightRay(const Ray& ray) {
   w.ox = ray.origin[w.kx];
   w.oy = ray.origin[w.ky];
   w.oz = ray.origin[w.kz];
+  w.origin = ray.origin;
+  w.dir = ray.dir;
   return w;
 }
 
@@ -96,16 +102,17 @@ namespace watertight_internal {
 // only when the edge functions agree in sign (a hit in 2D), so it runs in
 // double: det, T and t = T / det neither overflow nor lose precision for
 // |coordinates| < 1e30.
-inline bool Finish(double e0, double e1, double e2, const float x[3], const float y[3],
-                   const float z[3], float max_abs_kz, const Vec3& a, const Vec3& b,
-                   const Vec3& c, float tmin, float tmax, float* t, float* u, float* v) {
+inline bool Finish(const WatertightRay& r, double e0, double e1, double e2, const float x[3],
+                   const float y[3], const float z[3], float max_abs_kz, const Vec3& a,
+                   const Vec3& b, const Vec3& c, float tmin, float tmax, float* t, float* u,
+                   float* v) {
   if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
   const double det = e0 + e1 + e2;
   if (det == 0) return false;  // the ray lies in the triangle's plane, or degenerate
   const double big_t = e0 * z[0] + e1 * z[1] + e2 * z[2];
   const double inv_det = 1.0 / det;
-  const float tt = static_cast<float>(big_t * inv_det);
-  if (!(tt > tmin && tt <= tmax && tt < std::numeric_limits<float>::infinity())) return false;
+  float tt = static_cast<float>(big_t * inv_det);
+  if (!(tt <= tmax && tt < std::numeric_limits<float>::infinity())) return false;
   // Bounds on the rounding of the sheared coordinates and of the edge
   // functions (PBRT 3rd ed. 3.9.6).
   const double max_x = std::fmax(std::fabs(x[0]), std::fmax(std::fabs(x[1]), std::fabs(x[2])));
@@ -123,11 +130,19 @@ inline bool Finish(double e0, double e1, double e2, const float x[3], const floa
   // spans the origin's depth, as the one a ray was just spawned from always
   // does) t must exceed the bound on its rounding error of PBRT 3rd ed. 3.9.6.
   const double delta_z = Gamma(3) * max_z;
-  if (!(std::fmin(z[0], std::fmin(z[1], z[2])) > delta_z)) {
+  if (std::fmin(z[0], std::fmin(z[1], z[2])) > delta_z) {
+    if (!(tt > tmin)) return false;
+  } else {
     const double max_e = std::fmax(std::fabs(e0), std::fmax(std::fabs(e1), std::fabs(e2)));
     const double delta_t =
         3 * (Gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::fabs(inv_det);
-    if (!(tt > delta_t)) return false;
+    if (double(tt) <= tmin - delta_t) return false;
+    if (!(double(tt) > tmin + delta_t)) {
+      // Within rounding of tmin: decide exactly. (The bound is loose for large
+      // or sliver triangles, so rejecting here would lose real occluders.)
+      if (!ExactPlaneHitBeyond(r.origin, r.dir, a, b, c, tmin)) return false;
+      if (!(tt > tmin)) tt = std::nextafter(tmin, std::numeric_limits<float>::infinity());
+    }
   }
   *t = tt;
   *u = static_cast<float>(e1 * inv_det);
@@ -167,7 +182,7 @@ inline bool IntersectTriangleWatertight(const WatertightRay& r, const Vec3& a, c
   constexpr float kMax = std::numeric_limits<float>::max();
   if (e0 != 0.0f && e1 != 0.0f && e2 != 0.0f && std::fabs(e0) <= kMax && std::fabs(e1) <= kMax &&
       std::fabs(e2) <= kMax) {
-    return watertight_internal::Finish(e0, e1, e2, x, y, z, max_abs_kz, a, b, c, tmin, tmax, t, u,
+    return watertight_internal::Finish(r, e0, e1, e2, x, y, z, max_abs_kz, a, b, c, tmin, tmax, t, u,
                                       v);
   }
   // Double fallback: a zero, infinite or NaN edge function is recomputed in
@@ -175,7 +190,7 @@ inline bool IntersectTriangleWatertight(const WatertightRay& r, const Vec3& a, c
   const double d0 = double(x[2]) * y[1] - double(y[2]) * x[1];
   const double d1 = double(x[0]) * y[2] - double(y[0]) * x[2];
   const double d2 = double(x[1]) * y[0] - double(y[1]) * x[0];
-  return watertight_internal::Finish(d0, d1, d2, x, y, z, max_abs_kz, a, b, c, tmin, tmax, t, u, v);
+  return watertight_internal::Finish(r, d0, d1, d2, x, y, z, max_abs_kz, a, b, c, tmin, tmax, t, u, v);
 }
 
 }  // namespace kdtree

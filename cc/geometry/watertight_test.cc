@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cc/geometry/exact_area.h"
+#include "cc/geometry/exact_t.h"
 #include "cc/geometry/intersect.h"
 #include "cc/geometry/ray_check.h"
 #include "gtest/gtest.h"
@@ -147,12 +148,64 @@ TEST(Watertight, HugeAndTinyCoordinates) {
   }
 }
 
-TEST(Watertight, OriginOnTheTriangleDoesNotHitIt) {
+// A ray from a point on the plane up to rounding (well inside the triangle)
+// hits it exactly when, in exact arithmetic, the point is on the far side of
+// the plane from where the ray goes: the intersector is exact there, and
+// keeping a spawned ray off its own surface is spawn.h's job (spawn_test,
+// cc/robust case 7). Of two opposite directions at most one hits.
+TEST(Watertight, OriginOnTheTriangleHitsAsExactArithmeticSays) {
   const Vec3 a(0.1f, 0.2f, 0.3f), b(7.1f, 0.9f, -0.4f), c(0.3f, 5.7f, 1.3f);
   const Vec3 p = a + (b - a) * 0.3f + (c - a) * 0.3f;  // on the plane up to rounding
-  for (const Vec3& d : {Vec3(0.3f, -0.2f, 1), Vec3(-0.3f, 0.2f, -1), Vec3(1, 1, 1)}) {
-    EXPECT_FALSE(Hits(Ray{p, d}, a, b, c));
+  for (const Vec3& d : {Vec3(0.3f, -0.2f, 1), Vec3(1, 1, 1)}) {
+    const bool forward = Hits(Ray{p, d}, a, b, c), backward = Hits(Ray{p, -d}, a, b, c);
+    EXPECT_EQ(forward, ExactPlaneHitBeyond(p, d, a, b, c, 0.0f));
+    EXPECT_EQ(backward, ExactPlaneHitBeyond(p, -d, a, b, c, 0.0f));
+    EXPECT_FALSE(forward && backward);
   }
+}
+
+// Real shadow rays (stk-ravenbridge-mansion, engine) that cross a large or
+// sliver triangle spanning the origin's depth close to the origin: the t
+// rounding bound alone would reject them; the exact test keeps them.
+TEST(Watertight, CloseOccluderOfALargeTriangleIsHit) {
+  Ray r;
+  r.origin = Vec3(-171.213486f, 581.384583f, 292.709412f);
+  r.dir = Vec3(802.54248f, 989.195374f, 706.55658f);
+  r.tmin = 0.0f;
+  r.tmax = 1.0f;
+  float t = 0;
+  EXPECT_TRUE(Hits(r, Vec3(-169.826157f, 583.827637f, 295.357727f),
+                   Vec3(-171.152405f, 582.959717f, 292.923798f),
+                   Vec3(59.1861801f, 68.3025513f, 353.043121f), &t));
+  EXPECT_NEAR(t, 7.205e-4, 0.01e-4);
+  Ray e;
+  e.origin = Vec3(-224.001053f, 59.2209358f, 74.3958282f);
+  e.dir = Vec3(433.014038f, 523.352051f, 337.62915f);
+  e.tmin = 0.0f;
+  e.tmax = 1.0f;
+  EXPECT_TRUE(Hits(e, Vec3(-224.000031f, 53.5317688f, 77.0521545f),
+                   Vec3(-224.000046f, 80.7639618f, 53.4683723f),
+                   Vec3(-224.000031f, 61.7991104f, 73.1961823f), &t));
+  EXPECT_GT(t, 0.0f);
+  // The same rays reversed start just in front of the plane and move away: no hit.
+  e.dir = -e.dir;
+  EXPECT_FALSE(Hits(e, Vec3(-224.000031f, 53.5317688f, 77.0521545f),
+                    Vec3(-224.000046f, 80.7639618f, 53.4683723f),
+                    Vec3(-224.000031f, 61.7991104f, 73.1961823f)));
+}
+
+// exact_t.h on planes where the sign of t is plain, at tmin 0 and beyond.
+TEST(ExactT, DecidesTheSideOfTmin) {
+  const Vec3 a(0, 0, 1), b(1, 0, 1), c(0, 1, 1);
+  EXPECT_TRUE(ExactPlaneHitBeyond(Vec3(0, 0, 0), Vec3(0, 0, 1), a, b, c, 0.0f));
+  EXPECT_FALSE(ExactPlaneHitBeyond(Vec3(0, 0, 0), Vec3(0, 0, -1), a, b, c, 0.0f));
+  EXPECT_FALSE(ExactPlaneHitBeyond(Vec3(0, 0, 1), Vec3(0, 0, 1), a, b, c, 0.0f));  // t = 0
+  EXPECT_TRUE(ExactPlaneHitBeyond(Vec3(0, 0, 0), Vec3(0, 0, 1), a, b, c, 0.999f));
+  EXPECT_FALSE(ExactPlaneHitBeyond(Vec3(0, 0, 0), Vec3(0, 0, 1), a, b, c, 1.0f));
+  EXPECT_FALSE(ExactPlaneHitBeyond(Vec3(0, 0, 0), Vec3(1, 0, 0), a, b, c, 0.0f));  // parallel
+  // An origin one ulp in front of the plane, moving toward it: t > 0.
+  const float below = std::nextafter(1.0f, 0.0f);
+  EXPECT_TRUE(ExactPlaneHitBeyond(Vec3(0.25f, 0.25f, below), Vec3(0, 0, 1), a, b, c, 0.0f));
 }
 
 TEST(RayCheck, RejectsNanInfZeroAndFlushesDenormals) {

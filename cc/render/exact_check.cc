@@ -1,5 +1,7 @@
 #include "cc/render/exact_check.h"
 
+#include "cc/geometry/expansion.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -7,77 +9,12 @@
 namespace kdtree {
 namespace {
 
-// Shewchuk 1997, Theorem 7 (TwoSum): x + y == a + b exactly.
-void TwoSum(double a, double b, double* x, double* y) {
-  *x = a + b;
-  const double bv = *x - a;
-  const double av = *x - bv;
-  *y = (a - av) + (b - bv);
-}
-
-// An exact value as a list of double terms (not yet nonoverlapping).
-using Terms = std::vector<double>;
-
-// The exact difference of two floats as two terms.
-Terms Diff(float p, float q) {
-  double x, y;
-  TwoSum(p, -static_cast<double>(q), &x, &y);
-  return {x, y};
-}
-
-// Exact product of two term lists: every pairwise product as TwoProduct
-// (x = rounded product, y = fma(a, b, -x) is the exact remainder).
-Terms Mul(const Terms& p, const Terms& q) {
-  Terms out;
-  out.reserve(2 * p.size() * q.size());
-  for (double a : p) {
-    for (double b : q) {
-      const double x = a * b;
-      out.push_back(x);
-      out.push_back(std::fma(a, b, -x));
-    }
-  }
-  return out;
-}
-
-void AddTo(const Terms& p, double sign, Terms* sum) {
-  for (double x : p) sum->push_back(sign * x);
-}
-
-// Sign of the exact sum of `terms` (Shewchuk 1997, Grow-Expansion, Theorem 10:
-// the result is nonoverlapping, so its largest nonzero component has the sign
-// of the whole). Components are kept in increasing magnitude.
-int Sign(const Terms& terms) {
-  std::vector<double> e;
-  e.reserve(terms.size() + 1);
-  for (double b : terms) {
-    if (b == 0) continue;
-    double q = b;
-    std::vector<double> h;
-    h.reserve(e.size() + 1);
-    for (double ei : e) {
-      double s, r;
-      TwoSum(q, ei, &s, &r);
-      if (r != 0) h.push_back(r);
-      q = s;
-    }
-    if (q != 0) h.push_back(q);
-    e.swap(h);
-  }
-  if (e.empty()) return 0;
-  return e.back() > 0 ? 1 : -1;
-}
-
-// d . (p x q) as terms, with p and q given as exact per-axis term lists.
-Terms Triple(const Terms d[3], const Terms p[3], const Terms q[3]) {
-  Terms sum;
-  for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3, k = (i + 2) % 3;
-    AddTo(Mul(d[i], Mul(p[j], q[k])), 1, &sum);
-    AddTo(Mul(d[i], Mul(p[k], q[j])), -1, &sum);
-  }
-  return sum;
-}
+using expansion::AddTo;
+using expansion::Diff;
+using expansion::Mul;
+using expansion::Sign;
+using expansion::Terms;
+using expansion::Triple;
 
 using LD = long double;
 

@@ -2,7 +2,7 @@
 // ray where they disagree (compare.h), and how close that ray passes to a
 // triangle edge.
 //
-// The signs are exact: every float input is a double, differences of two
+// The signs are exact (cc/geometry/expansion.h): every float input is a double, differences of two
 // floats are kept exactly as two-term expansions (TwoSum), products as
 // expansions (TwoProduct, with a correctly rounded fma), and the sum of all
 // terms is formed as a nonoverlapping expansion (Grow-Expansion) whose largest
