@@ -129,12 +129,19 @@ class KdtreeAnalysisTest(unittest.TestCase):
         with open(path, "a") as f:
             rec = record("alpha", "clipping", T_R=0.4)
             rec["embree"] = {"T_B": 0.1, "T_R": 0.2, "disagreements_grazing": 2,
+                             "disagreements_at_origin": 3,
+                             "disagreements_t_guard": 1,
                              "disagreements_other": 0}
+            rec["disagreements"] = {"reference_wrong": 4, "other_wrong": 2}
             f.write(json.dumps(rec) + "\n")
         macros = embree.generate(self.ctx)
         self.assertEqual(macros["EmbreeScenes"][0], "1")
         self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")
         self.assertEqual(macros["EmbreeGrazingDisagreements"][0], "2")
+        self.assertEqual(macros["EmbreeAtOriginDisagreements"][0], "3")
+        self.assertEqual(macros["EmbreeOtherDisagreements"][0], "1")
+        self.assertEqual(macros["EmbreeKdWrong"][0], "4")
+        self.assertEqual(macros["EmbreeEmbreeWrong"][0], "2")
         self.assertIn("Clipping", self.read("embree.tex"))
 
     def test_figures_are_written(self):

@@ -43,6 +43,12 @@ FIELDS = {
     "embree_disagree": ["embree.disagreements", "embree.disagree"],
     "embree_grazing": ["embree.disagreements_grazing"],
     "embree_other": ["embree.disagreements_other"],
+    "embree_at_origin": ["embree.disagreements_at_origin"],
+    "embree_t_guard": ["embree.disagreements_t_guard"],
+    # Judged in exact arithmetic (cc/render/compare.h): the kd-tree is the
+    # reference tracer of kdrt's comparison, Embree the other.
+    "kd_wrong": ["disagreements.reference_wrong"],
+    "embree_wrong": ["disagreements.other_wrong"],
     "embree_rays_per_s": ["embree.all_rays_per_s"],
     "cpu": ["cpu", "machine.cpu", "cpu_model"],
     "repeats": ["repeats"], "repeat_budget_s": ["repeat_budget_s"],

@@ -23,7 +23,8 @@ EXPECTED_MACROS = [
     "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
-    "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements"
+    "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
+    "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong"
 ] + robustness.MACROS + accuracy.MACROS
 
 
