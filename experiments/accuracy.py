@@ -17,11 +17,7 @@ import argparse
 import json
 import os
 import re
-import shutil
-import subprocess
 import sys
-import tempfile
-import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
@@ -70,37 +66,26 @@ def run_one(kdrt, scene, step, profile, profile_name, out):
     env_path = os.path.join(env_dir, slug(step["step"]) + ".env")
     with open(env_path, "w", encoding="utf-8") as f:
         f.write(env_text(step["options"]))
-    tmp = tempfile.mkdtemp(prefix="kdrt-acc-", dir=out)
     cmd = [kdrt, "--scene", scene, "--preset", step["preset"],
            "--env", env_path, "--label", slug(step["step"]),
            "--repeats", str(profile["repeats"]), "--threads", "1",
-           "--embree", "off", "--out", tmp]
+           "--embree", "off"]
     if profile.get("repeat_budget_s"):
         cmd += ["--repeat_budget_s", str(profile["repeat_budget_s"])]
-    key = job_key(scene, step, profile["repeats"])
-    start = time.time()
-    try:
-        proc = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, text=True)
-        wall = time.time() - start
-        lines = []
-        results = os.path.join(tmp, "results.jsonl")
-        if os.path.exists(results):
-            with open(results, encoding="utf-8") as f:
-                lines = [json.loads(x) for x in f if x.strip()]
-        base = {"job": key, "scene": scene, "knob": step["knob"],
-                "step": step["step"], "options": step["options"],
-                "profile": profile_name, "wall_s": wall}
-        if proc.returncode != 0 or not lines:
-            base.update({"ok": False, "returncode": proc.returncode,
-                         "command": cmd, "error": proc.stderr[-2000:]})
-            return base
-        rec = lines[-1]
-        rec.update(base)
-        rec.update({"ok": True, "node": run_matrix.node_info()})
-        return rec
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    returncode, stderr, lines, wall, cmd = run_matrix.run_kdrt(
+        cmd, out, prefix="kdrt-acc-")
+    base = {"job": job_key(scene, step, profile["repeats"]), "scene": scene,
+            "knob": step["knob"], "step": step["step"],
+            "options": step["options"], "profile": profile_name,
+            "wall_s": wall}
+    if returncode != 0 or not lines:
+        base.update({"ok": False, "returncode": returncode,
+                     "command": cmd, "error": stderr[-2000:]})
+        return base
+    rec = lines[-1]
+    rec.update(base)
+    rec.update({"ok": True, "node": run_matrix.node_info()})
+    return rec
 
 
 def main(argv=None):

@@ -86,18 +86,41 @@ def plan(profile, matrix, manifest, index, scenes=None, variants=None):
     return [(n, index[n], v) for n in names if n in index for v in chosen]
 
 
-def kdrt_command(kdrt, scene, variant, settings, out_dir):
+def kdrt_command(kdrt, scene, variant, settings, out_dir=None):
     cmd = [kdrt, "--scene", scene,
            "--env", os.path.join(ROOT, "experiments", "presets",
                                  variant + ".env"),
            "--preset", variant,
            "--repeats", str(settings["repeats"]),
            "--threads", str(settings["threads"]),
-           "--embree", settings["embree"],
-           "--out", out_dir]
+           "--embree", settings["embree"]]
     if settings.get("repeat_budget_s"):
         cmd += ["--repeat_budget_s", str(settings["repeat_budget_s"])]
-    return cmd
+    return cmd + ["--out", out_dir] if out_dir else cmd
+
+
+def run_kdrt(cmd, out, prefix="kdrt-", keep_files=None):
+    """Runs a kdrt command line (without --out) with --out set to a fresh
+    temporary directory under `out`. keep_files(tmp_dir), when given, may move
+    files out of it before it is removed. Returns (returncode, stderr, the
+    records kdrt wrote, wall seconds, the full command)."""
+    tmp = tempfile.mkdtemp(prefix=prefix, dir=out)
+    cmd = cmd + ["--out", tmp]
+    start = time.time()
+    try:
+        proc = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+        wall = time.time() - start
+        lines = []
+        results = os.path.join(tmp, "results.jsonl")
+        if os.path.exists(results):
+            with open(results, encoding="utf-8") as f:
+                lines = [json.loads(x) for x in f if x.strip()]
+        if keep_files:
+            keep_files(tmp)
+        return proc.returncode, proc.stderr, lines, wall, cmd
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
 
 
 def node_info():
@@ -112,35 +135,26 @@ def node_info():
 
 def run_job(kdrt, scene, variant, settings, out, profile):
     """Runs kdrt for one job; returns the record to append."""
-    tmp = tempfile.mkdtemp(prefix="kdrt-", dir=out)
-    start = time.time()
-    cmd = kdrt_command(kdrt, scene, variant, settings, tmp)
-    try:
-        proc = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, text=True)
-        wall = time.time() - start
-        lines = []
-        results = os.path.join(tmp, "results.jsonl")
-        if os.path.exists(results):
-            with open(results, encoding="utf-8") as f:
-                lines = [json.loads(x) for x in f if x.strip()]
-        if proc.returncode != 0 or not lines:
-            return {"ok": False, "job": job_key(scene, variant, settings),
-                    "scene": scene, "preset": variant, "profile": profile,
-                    "returncode": proc.returncode, "wall_s": wall,
-                    "command": cmd, "error": proc.stderr[-2000:]}
-        rec = lines[-1]
-        rec.update({"ok": True, "job": job_key(scene, variant, settings),
-                    "profile": profile, "wall_s": wall, "node": node_info()})
+    def keep_images(tmp):
         images = os.path.join(out, "images")
         os.makedirs(images, exist_ok=True)
         for name in os.listdir(tmp):
             if name.endswith(".png"):
                 shutil.move(os.path.join(tmp, name),
                             os.path.join(images, "%s_%s.png" % (scene, variant)))
-        return rec
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+
+    cmd = kdrt_command(kdrt, scene, variant, settings)
+    returncode, stderr, lines, wall, cmd = run_kdrt(cmd, out,
+                                                    keep_files=keep_images)
+    if returncode != 0 or not lines:
+        return {"ok": False, "job": job_key(scene, variant, settings),
+                "scene": scene, "preset": variant, "profile": profile,
+                "returncode": returncode, "wall_s": wall,
+                "command": cmd, "error": stderr[-2000:]}
+    rec = lines[-1]
+    rec.update({"ok": True, "job": job_key(scene, variant, settings),
+                "profile": profile, "wall_s": wall, "node": node_info()})
+    return rec
 
 
 def append_record(results_path, rec):

@@ -12,6 +12,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
+import accuracy  # noqa: E402
 import compare_results  # noqa: E402
 import run_matrix  # noqa: E402
 
@@ -95,6 +96,23 @@ class RunMatrixTest(unittest.TestCase):
         s["repeat_budget_s"] = 30
         cmd = run_matrix.kdrt_command("k", "a", "pruning", s, "o")
         self.assertEqual(cmd[cmd.index("--repeat_budget_s") + 1], "30")
+
+    def test_accuracy_step_records_knob_and_failure(self):
+        out = os.path.join(self.tmp.name, "out")
+        os.makedirs(out)
+        step = {"knob": "bins", "step": "bins 4", "preset": "sah-binned-32",
+                "options": {"bins": 4}}
+        profile = {"repeats": 3, "repeat_budget_s": 20}
+        rec = accuracy.run_one(self.kdrt, "a", step, profile, "test", out)
+        self.assertTrue(rec["ok"])
+        self.assertEqual((rec["scene"], rec["preset"], rec["knob"], rec["step"]),
+                         ("a", "sah-binned-32", "bins", "bins 4"))
+        bad = accuracy.run_one(self.kdrt, "broken", step, profile, "test", out)
+        self.assertFalse(bad["ok"])
+        self.assertIn("--repeat_budget_s", bad["command"])
+        self.assertIn("cannot load scene", bad["error"])
+        # Temporary kdrt directories are removed; the env files stay.
+        self.assertEqual(sorted(os.listdir(out)), ["accuracy"])
 
     def test_reads_the_index_shape_fetch_py_writes(self):
         with open(self.index, "w") as f:
