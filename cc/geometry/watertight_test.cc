@@ -208,6 +208,27 @@ TEST(ExactT, DecidesTheSideOfTmin) {
   EXPECT_TRUE(ExactPlaneHitBeyond(Vec3(0.25f, 0.25f, below), Vec3(0, 0, 1), a, b, c, 0.0f));
 }
 
+// The double filter of ExactPlaneHitBeyond decides as the expansions do, on
+// origins within rounding of the plane (the filter's hard cases), at scales
+// from 1e-6 to 1e6.
+TEST(ExactT, FilterAgreesWithExpansions) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), w(0.0f, 1.0f);
+  for (float scale : {1e-6f, 1.0f, 1e6f}) {
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 a = Vec3(u(rng), u(rng), u(rng)) * scale, b = Vec3(u(rng), u(rng), u(rng)) * scale,
+                 c = Vec3(u(rng), u(rng), u(rng)) * scale;
+      const float s = w(rng), t = w(rng) * (1 - s);
+      const Vec3 o = a + (b - a) * s + (c - a) * t;  // on the plane up to rounding
+      const Vec3 d(u(rng), u(rng), u(rng));
+      const bool filtered = ExactPlaneHitBeyond(o, d, a, b, c, 0.0f);
+      ASSERT_EQ(filtered, exact_t_internal::ExactExpansions(o, d, a, b, c, 0.0f)) << i;
+      // Both directions beyond the origin at once is impossible.
+      ASSERT_FALSE(filtered && ExactPlaneHitBeyond(o, -d, a, b, c, 0.0f)) << i;
+    }
+  }
+}
+
 TEST(RayCheck, RejectsNanInfZeroAndFlushesDenormals) {
   const float nan = std::nanf(""), inf = INFINITY;
   Ray r{{0, 0, 0}, {1, 0, 0}};

@@ -52,7 +52,9 @@ TreeStats ComputeStats(const KdTree& tree) {
                      8.0 * tree.num_triangles()) /
                     (1024.0 * 1024.0);
   s.tree_bytes = tree.nodes.size() * sizeof(KdNode) + tree.refs.size() * sizeof(uint32_t) +
-                 tree.tris.size() * sizeof(TriAccel);
+                 tree.tris.size() * sizeof(TriAccel) + tree.verts.size() * sizeof(Vec3) +
+                 tree.leaf_soa.size() * sizeof(float) +
+                 tree.leaf_packet.size() * sizeof(uint32_t);
   s.build_peak_bytes = tree.counters.peak_build_refs * sizeof(BuildRef);
   return s;
 }

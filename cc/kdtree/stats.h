@@ -32,7 +32,8 @@ struct TreeStats {
   // mem as the report computes it (MB of 2^20 bytes; fits every row 18 entry):
   // [8 (N_I + N_L) + 4 (N_TP + N_L - N_empty) + 8 N_tri] / 2^20.
   double mem_report_mb = 0;
-  // Bytes the traversal reads: nodes, leaf lists, per-triangle data.
+  // Bytes of the traversable tree: nodes, leaf lists, per-triangle data
+  // (TriAccel and the vertices) and, when built, the leaf-order packets.
   uint64_t tree_bytes = 0;
   // Peak bytes of build references (clipped boxes included) during the build.
   uint64_t build_peak_bytes = 0;
