@@ -28,6 +28,7 @@ from analysis import claims  # noqa: E402
 from analysis import context  # noqa: E402
 from analysis import embree  # noqa: E402
 from analysis import figures  # noqa: E402
+from analysis import gallery  # noqa: E402
 from analysis import kdtree_figures  # noqa: E402
 from analysis import kdtree_tables  # noqa: E402
 from analysis import latex  # noqa: E402
@@ -52,7 +53,7 @@ GENERATORS = [
     embree,
     accuracy,
     robustness,
-    # Later stages: kd-tree tables 2-10, robustness, accuracy vs time, Embree.
+    gallery,
 ]
 
 MARKER = ".generated-by-analysis"

@@ -24,7 +24,8 @@ EXPECTED_MACROS = [
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
     "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
-    "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong"
+    "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
+    "GalleryImages"
 ] + robustness.MACROS + accuracy.MACROS
 
 
