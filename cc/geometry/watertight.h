@@ -124,11 +124,12 @@ inline bool Finish(const WatertightRay& r, double e0, double e1, double e2, cons
   // A projected area within rounding of zero may come from a triangle of zero
   // area (collinear vertices, sheared apart by rounding): never hit those.
   if (std::fabs(det) <= 3 * delta_e && HasZeroArea(a, b, c)) return false;
-  // t must be conservatively positive. t is a convex combination of the vertex
-  // depths z (the edge functions share a sign), so it is when every vertex is in
-  // front of the origin by more than the rounding of z. Otherwise (the triangle
-  // spans the origin's depth, as the one a ray was just spawned from always
-  // does) t must exceed the bound on its rounding error of PBRT 3rd ed. 3.9.6.
+  // t > tmin must be right. t is a convex combination of the vertex depths z
+  // (the edge functions share a sign), so t > 0 for sure when every vertex is
+  // in front of the origin by more than the rounding of z. Otherwise (the
+  // triangle spans the origin's depth, as the one a ray was just spawned from
+  // always does) t is compared with tmin outside the bound on its rounding
+  // error (PBRT 3rd ed. 3.9.6), and decided exactly inside it.
   const double delta_z = Gamma(3) * max_z;
   if (std::fmin(z[0], std::fmin(z[1], z[2])) > delta_z) {
     if (!(tt > tmin)) return false;
