@@ -1,47 +1,35 @@
 // Exact test for a triangle of zero area (repeated or collinear vertices).
 //
 // Each 2D orientation determinant of float coordinates is a sum of six
-// products of two floats, every one exact in double; the sum is formed exactly
-// as a nonoverlapping expansion (Shewchuk, "Adaptive Precision Floating-Point
-// Arithmetic and Fast Robust Geometric Predicates", DCG 18(3), 1997: Two-Sum
-// and Grow-Expansion), which is zero iff every component is zero. Needs IEEE
-// double without FMA contraction or fast-math (.bazelrc).
+// products of two floats, every one exact in double; its sign is taken exactly
+// (expansion.h: Shewchuk, "Adaptive Precision Floating-Point Arithmetic and
+// Fast Robust Geometric Predicates", DCG 18(3), 1997). Needs IEEE double
+// without FMA contraction or fast-math (.bazelrc). The loader drops such
+// triangles with it (cc/io: IsDegenerateTriangle).
 #ifndef KDTREE_CC_GEOMETRY_EXACT_AREA_H_
 #define KDTREE_CC_GEOMETRY_EXACT_AREA_H_
 
+#include <cmath>
+
+#include "cc/geometry/expansion.h"
 #include "cc/geometry/vec3.h"
 
 namespace kdtree {
 
 namespace exact_area_internal {
 
-// s + e == a + b exactly.
-inline void TwoSum(double a, double b, double* s, double* e) {
-  *s = a + b;
-  const double bv = *s - a;
-  const double av = *s - bv;
-  *e = (a - av) + (b - bv);
-}
-
-// True when ax by - ay bx + bx cy - by cx + cx ay - cy ax == 0 exactly.
+// True when ax by - ay bx + bx cy - by cx + cx ay - cy ax == 0 exactly. The
+// orient2d filter (Shewchuk 1997, section 4.3, stage A) settles almost every
+// case; the rest are summed as an expansion.
 inline bool Orient2dIsZero(float ax, float ay, float bx, float by, float cx, float cy) {
-  const double p[6] = {double(ax) * by, -(double(ay) * bx), double(bx) * cy,
-                       -(double(by) * cx), double(cx) * ay, -(double(cy) * ax)};
-  double e[6];
-  int n = 0;
-  for (double q : p) {  // Grow-Expansion: add q to the expansion e[0..n)
-    for (int i = 0; i < n; ++i) {
-      double s, err;
-      TwoSum(q, e[i], &s, &err);
-      e[i] = err;
-      q = s;
-    }
-    e[n++] = q;
-  }
-  for (int i = 0; i < n; ++i) {
-    if (e[i] != 0) return false;
-  }
-  return true;
+  constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
+  constexpr double kErrBound = (3.0 + 16.0 * kEps) * kEps;
+  const double left = (double(ax) - cx) * (double(by) - cy);
+  const double right = (double(ay) - cy) * (double(bx) - cx);
+  if (std::fabs(left - right) > kErrBound * (std::fabs(left) + std::fabs(right))) return false;
+  const expansion::Terms p = {double(ax) * by, -(double(ay) * bx), double(bx) * cy,
+                              -(double(by) * cx), double(cx) * ay, -(double(cy) * ax)};
+  return expansion::Sign(p) == 0;
 }
 
 }  // namespace exact_area_internal

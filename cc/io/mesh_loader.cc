@@ -22,6 +22,7 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "cc/geometry/exact_area.h"
 #include "cc/io/mesh_syntax.h"
 
 namespace kdtree {
@@ -129,44 +130,6 @@ std::string Extension(const std::string& path) {
   const size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || dot < start || dot + 1 == path.size()) return "";
   return absl::AsciiStrToLower(path.substr(dot + 1));
-}
-
-// Exact Two-Sum: s + e == a + b exactly (needs IEEE double, no FMA contraction
-// or fast-math, which .bazelrc guarantees).
-inline void TwoSum(double a, double b, double* s, double* e) {
-  *s = a + b;
-  const double bv = *s - a;
-  const double av = *s - bv;
-  *e = (a - av) + (b - bv);
-}
-
-// True when the 2D orientation determinant of (a, b, c) is exactly zero.
-// Inputs are floats widened to double, so each product below is exact; a
-// Shewchuk-style filter settles almost every case, the rest are summed exactly
-// as a nonoverlapping expansion (zero iff every component is zero).
-bool Orient2dIsZero(double ax, double ay, double bx, double by, double cx, double cy) {
-  constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
-  constexpr double kErrBound = (3.0 + 16.0 * kEps) * kEps;
-  const double left = (ax - cx) * (by - cy);
-  const double right = (ay - cy) * (bx - cx);
-  const double det = left - right;
-  if (std::fabs(det) > kErrBound * (std::fabs(left) + std::fabs(right))) return false;
-  const double terms[6] = {bx * cy, -(bx * ay), -(ax * cy), -(by * cx), by * ax, ay * cx};
-  double e[6];
-  int n = 0;
-  for (double q : terms) {  // Shewchuk's Grow-Expansion.
-    for (int i = 0; i < n; ++i) {
-      double s, err;
-      TwoSum(q, e[i], &s, &err);
-      e[i] = err;
-      q = s;
-    }
-    e[n++] = q;
-  }
-  for (int i = 0; i < n; ++i) {
-    if (e[i] != 0) return false;
-  }
-  return true;
 }
 
 inline bool SaneCoordinate(float x) { return std::fabs(x) <= kMaxAbsCoordinate; }  // NaN fails
@@ -354,11 +317,7 @@ bool IsSaneTriangle(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 bool IsDegenerateTriangle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Zero area iff all three components of (b - a) x (c - a) vanish, i.e. the
-  // triangle's projections on the xy, yz and zx planes all have zero area.
-  return Orient2dIsZero(a.x, a.y, b.x, b.y, c.x, c.y) &&
-         Orient2dIsZero(a.y, a.z, b.y, b.z, c.y, c.z) &&
-         Orient2dIsZero(a.z, a.x, b.z, b.x, c.z, c.x);
+  return HasZeroArea(a, b, c);  // exact (cc/geometry/exact_area.h)
 }
 
 absl::StatusOr<TriangleSoup> LoadMesh(const std::string& path, LoadReport* report,
