@@ -14,7 +14,9 @@ PY=/usr/bin/python3
 OUT="$ROOT/out"
 RESULTS="$OUT/results"
 
-step() { printf '\n==> %s\n' "$*"; }
+START_S=$(date +%s)
+# Each step prints the wall time since the start, so a log shows what took long.
+step() { printf '\n==> [%s, +%d s] %s\n' "$(date +%T)" $(( $(date +%s) - START_S )) "$*"; }
 
 step "set-up (Debian packages, idempotent)"
 bash experiments/setup.sh --with-report --with-blender
@@ -95,4 +97,4 @@ latexmk -pdf -cd -interaction=nonstopmode -halt-on-error \
   -output-directory=build report/main.tex
 cp report/build/main.pdf "$OUT/report.pdf"
 echo
-echo "reproduce: report at $OUT/report.pdf"
+echo "reproduce: report at $OUT/report.pdf ($(( $(date +%s) - START_S )) s in all)"
