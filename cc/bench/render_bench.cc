@@ -141,8 +141,8 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
   if (!tree.ok()) return tree.status();
   KdTree index_tree = *tree;
-  std::vector<float>().swap(index_tree.leaf_soa);
-  std::vector<uint32_t>().swap(index_tree.leaf_packet);
+  kdtree::HugeVector<float>().swap(index_tree.leaf_soa);
+  kdtree::HugeVector<uint32_t>().swap(index_tree.leaf_packet);
   TraversalOptions mb;
   mb.mailbox = true;
   const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);

@@ -41,7 +41,7 @@ class Builder {
       : soup_(soup), config_(config), tree_(tree), max_depth_(max_depth), parallel_(parallel) {}
 
   // Builds a subtree (a fragment, parallel_build.h) over `refs` into tree_.
-  void RunFragment(std::vector<BuildRef> refs, const AABB& box, int depth) {
+  void RunFragment(HugeVector<BuildRef> refs, const AABB& box, int depth) {
     tree_->refs.push_back(0);
     pool_ = std::move(refs);
     const size_t n = pool_.size();
@@ -127,8 +127,8 @@ class Builder {
   void RecurseInParallel(uint32_t node, size_t left_begin, size_t right_begin, size_t right_end,
                          const AABB& left_box, const AABB& right_box, int depth,
                          const Split& split) {
-    std::vector<BuildRef> left(pool_.begin() + left_begin, pool_.begin() + right_begin);
-    std::vector<BuildRef> right(pool_.begin() + right_begin, pool_.begin() + right_end);
+    HugeVector<BuildRef> left(pool_.begin() + left_begin, pool_.begin() + right_begin);
+    HugeVector<BuildRef> right(pool_.begin() + right_begin, pool_.begin() + right_end);
     pool_.resize(left_begin);
     KdTree left_tree, right_tree;
     Builder lb(soup_, config_, &left_tree, max_depth_, true);
@@ -228,7 +228,7 @@ class Builder {
   }
 
   void MakeLeaf(uint32_t node, size_t begin, size_t end, const AABB& box) {
-    std::vector<uint32_t>& refs = tree_->refs;
+    HugeVector<uint32_t>& refs = tree_->refs;
     const size_t offset = refs.size();
     refs.push_back(0);
     uint32_t count = 0;
@@ -262,8 +262,8 @@ class Builder {
   const TriangleSoup& soup_;
   const Config& config_;
   KdTree* tree_;
-  std::vector<BuildRef> pool_;
-  std::vector<BuildRef> right_;
+  HugeVector<BuildRef> pool_;
+  HugeVector<BuildRef> right_;
   size_t left_count_ = 0;
   const int max_depth_;
   const bool parallel_;
@@ -295,7 +295,7 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   for (size_t i = 0; i < soup.size(); ++i) {
     tree.tris.push_back(MakeTriAccel(soup.a(i), soup.b(i), soup.c(i)));
   }
-  tree.verts = soup.v;
+  tree.verts.assign(soup.v.begin(), soup.v.end());
   const int threads = config.build_threads == 0
                           ? tbb::this_task_arena::max_concurrency()
                           : config.build_threads;

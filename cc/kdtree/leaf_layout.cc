@@ -3,8 +3,8 @@
 namespace kdtree {
 
 void LayoutLeafTriangles(KdTree* tree) {
-  std::vector<float>().swap(tree->leaf_soa);
-  std::vector<uint32_t>().swap(tree->leaf_packet);
+  HugeVector<float>().swap(tree->leaf_soa);
+  HugeVector<uint32_t>().swap(tree->leaf_packet);
   if (tree->verts.empty() || tree->nodes.empty()) return;
   // Packets needed, then filled per leaf node in node order (any packing of
   // the refs lists, shared lists included, is covered).

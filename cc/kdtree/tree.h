@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cc/base/huge_pages.h"
 #include "cc/geometry/aabb.h"
 #include "cc/geometry/intersect.h"
 #include "cc/kdtree/config.h"
@@ -49,22 +50,23 @@ struct BuildCounters {
   uint64_t pruned() const { return pruned_box + pruned_leaf; }  // N_PR
 };
 
+// The arrays are HugeVectors (cc/base/huge_pages.h): on huge pages when large.
 struct KdTree {
   Config config;
   AABB bounds;                  // root box: union of the triangles' tight boxes
-  std::vector<KdNode> nodes;    // nodes[0] is the root
-  std::vector<uint32_t> refs;   // count-prefixed leaf lists; refs[0] == 0
-  std::vector<TriAccel> tris;   // per-triangle intersection data, by index
+  HugeVector<KdNode> nodes;      // nodes[0] is the root
+  HugeVector<uint32_t> refs;     // count-prefixed leaf lists; refs[0] == 0
+  HugeVector<TriAccel> tris;     // per-triangle intersection data, by index
   // The triangles' vertices, 3 per triangle (a, b, c as in the soup): the
   // watertight test (cc/geometry/watertight.h) needs the exact shared vertices,
   // which v0 + e1 of TriAccel does not reproduce.
-  std::vector<Vec3> verts;
+  HugeVector<Vec3> verts;
   // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
   // vertices in packets of 4 triangles (structure of arrays, 36 floats per
   // packet) in leaf_soa; the leaf at nodes[i] starts at packet leaf_packet[i].
   // Empty: traversal reads `verts` by index.
-  std::vector<float> leaf_soa;
-  std::vector<uint32_t> leaf_packet;
+  HugeVector<float> leaf_soa;
+  HugeVector<uint32_t> leaf_packet;
   BuildCounters counters;
   double build_seconds = 0;     // T_B: triangles in memory to traversable tree
 

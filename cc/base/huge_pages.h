@@ -1,0 +1,70 @@
+// Large arrays on transparent huge pages (2 MiB) instead of 4 KiB pages.
+//
+// A kd-tree build touches hundreds of megabytes of fresh memory (build
+// references, nodes, leaf lists, leaf packets), and traversal walks it in an
+// order no TLB of 4 KiB pages covers. On the measured machines transparent
+// huge pages are granted only on request (/sys/kernel/mm/transparent_hugepage/
+// enabled = madvise), so an array that never asks pays one page fault per
+// 4 KiB when it is first written and a TLB miss on most node visits. Embree
+// asks for huge pages by default on Linux (rtcNewDevice(3), "hugepages"); this
+// allocator asks too, so that the two tracers are compared on equal terms.
+//
+// HugePageAllocator<T> serves requests of at least kHugePageBytes from
+// 2 MiB-aligned memory advised with madvise(MADV_HUGEPAGE) (a hint: the kernel
+// may refuse, and the memory is then ordinary); smaller requests go to
+// operator new. HugeVector<T> is a std::vector using it.
+#ifndef KDTREE_CC_BASE_HUGE_PAGES_H_
+#define KDTREE_CC_BASE_HUGE_PAGES_H_
+
+#include <cstddef>
+#include <new>
+#include <vector>
+
+namespace kdtree {
+
+inline constexpr size_t kHugePageBytes = size_t{2} << 20;
+
+// Memory for `bytes` (>= kHugePageBytes): 2 MiB-aligned, rounded up to whole
+// huge pages, advised MADV_HUGEPAGE. Throws std::bad_alloc when out of memory.
+void* AllocateHugePages(size_t bytes);
+void FreeHugePages(void* p);
+
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+
+  HugePageAllocator() = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}  // NOLINT: rebinding
+
+  T* allocate(size_t n) {
+    if (n > static_cast<size_t>(-1) / sizeof(T)) throw std::bad_alloc();
+    const size_t bytes = n * sizeof(T);
+    if (bytes < kHugePageBytes) return static_cast<T*>(::operator new(bytes));
+    return static_cast<T*>(AllocateHugePages(bytes));
+  }
+  void deallocate(T* p, size_t n) {
+    // The same size decides the same way as in allocate.
+    if (n * sizeof(T) < kHugePageBytes) {
+      ::operator delete(p);
+    } else {
+      FreeHugePages(p);
+    }
+  }
+};
+
+template <class T, class U>
+bool operator==(const HugePageAllocator<T>&, const HugePageAllocator<U>&) {
+  return true;
+}
+template <class T, class U>
+bool operator!=(const HugePageAllocator<T>&, const HugePageAllocator<U>&) {
+  return false;
+}
+
+template <class T>
+using HugeVector = std::vector<T, HugePageAllocator<T>>;
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_BASE_HUGE_PAGES_H_
