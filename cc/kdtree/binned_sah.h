@@ -27,6 +27,7 @@ namespace kdtree {
 // Reused counter arrays, so that the build allocates nothing per node.
 struct BinScratch {
   std::vector<uint32_t> starts, ends;
+  std::vector<float> n_left, n_right, cost, plane;  // per candidate plane
 };
 
 // Bin of coordinate x: (int)((x - lo) * bins / extent), clamped to
@@ -45,6 +46,12 @@ inline int BinOf(float x, float lo, float extent, int bins) {
 inline float BinPlane(float lo, float extent, int i, int bins) {
   return lo + extent * static_cast<float>(i) / static_cast<float>(bins);
 }
+
+// Start and end bins of every reference on the three axes in one pass:
+// starts[axis * bins + BinOf(box.lo[axis], ...)] and likewise ends with
+// box.hi, exactly the bins of the scalar BinOf (SSE, four lanes).
+void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
+                      BinScratch* scratch);
 
 // Best plane over config.bins bins on the driving axis (config.use_driving_axis)
 // or on all three axes. Axes of zero extent are skipped; not found when every
