@@ -142,7 +142,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   if (!tree.ok()) return tree.status();
   KdTree index_tree = *tree;
   kdtree::HugeVector<float>().swap(index_tree.leaf_soa);
-  kdtree::HugeVector<uint32_t>().swap(index_tree.leaf_packet);
+  kdtree::HugeVector<kdtree::KdNode>().swap(index_tree.leaf_nodes);
   TraversalOptions mb;
   mb.mailbox = true;
   const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);

@@ -14,9 +14,18 @@
 // (v0 + e1, or Woop's unit-triangle transform) would round differently and
 // change the answers. So results are identical with or without the layout.
 //
-// Packet layout (floats): [vertex v][axis k][lane l] at (3 v + k) * 4 + l,
-// v = 0, 1, 2 for a, b, c. Lanes past a leaf's count are zero (the traversal
-// masks them). Leaf j's lane l is the triangle refs[leaf.index() + 1 + 4 j + l].
+// Packet layout (40 words): [vertex v][axis k][lane l] at (3 v + k) * 4 + l,
+// v = 0, 1, 2 for a, b, c (36 floats), then the 4 lanes' triangle indices
+// (uint32 bit patterns, read with memcpy or SSE integer loads). A leaf's
+// packets are consecutive; lane 0's index has bit 31 set in the leaf's last
+// packet; lanes past a leaf's count hold index kPadLane and zero vertices
+// (the traversal masks them). Leaf j's lane l is the triangle
+// refs[leaf.index() + 1 + 4 j + l].
+//
+// The traversal walks tree.leaf_nodes, a copy of tree.nodes in which a leaf's
+// index is its first packet (kEmptyLeaf for an empty leaf): a leaf visit then
+// reads one contiguous block, with no dependent load of its count in refs
+// or of a per-node packet offset (each a likely cache miss on large scenes).
 #ifndef KDTREE_CC_KDTREE_LEAF_LAYOUT_H_
 #define KDTREE_CC_KDTREE_LEAF_LAYOUT_H_
 
@@ -28,20 +37,25 @@
 namespace kdtree {
 
 inline constexpr int kPacketLanes = 4;
-inline constexpr int kPacketFloats = 9 * kPacketLanes;
+inline constexpr int kPacketIds = 9 * kPacketLanes;  // where the indices start
+inline constexpr int kPacketFloats = kPacketIds + kPacketLanes;
+inline constexpr uint32_t kPadLane = 0xFFFFFFFFu;
+inline constexpr uint32_t kLastPacket = 0x80000000u;  // on lane 0's index
+inline constexpr uint32_t kEmptyLeaf = KdNode::kMaxIndex;  // leaf_nodes index
 
-// Fills tree->leaf_soa and tree->leaf_packet from the nodes, refs and verts
-// (replacing any previous layout). A tree without verts gets none.
+// Fills tree->leaf_soa and tree->leaf_nodes from the nodes, refs and verts
+// (replacing any previous layout). A tree without verts, or with 2^30 - 1
+// packets or more, gets none.
 void LayoutLeafTriangles(KdTree* tree);
 
 // Whether `tree` has a complete layout (the traversal uses it then).
 inline bool HasLeafLayout(const KdTree& tree) {
-  return !tree.leaf_packet.empty() && tree.leaf_packet.size() == tree.nodes.size();
+  return !tree.leaf_nodes.empty() && tree.leaf_nodes.size() == tree.nodes.size();
 }
 
 // Bytes held by the layout (0 when absent).
 inline size_t LeafLayoutBytes(const KdTree& tree) {
-  return tree.leaf_soa.size() * sizeof(float) + tree.leaf_packet.size() * sizeof(uint32_t);
+  return tree.leaf_soa.size() * sizeof(float) + tree.leaf_nodes.size() * sizeof(KdNode);
 }
 
 }  // namespace kdtree

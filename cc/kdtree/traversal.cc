@@ -175,7 +175,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
   }
   StackEntry stack[kMaxTraversalStack];
   int top = 0;
-  const KdNode* nodes = tree.nodes.data();
+  // With the leaf layout, leaf_nodes: the same inner nodes, leaves pointing at
+  // their packets (leaf_layout.h).
+  const KdNode* nodes = kLeafOrdered ? tree.leaf_nodes.data() : tree.nodes.data();
   const uint32_t* refs = tree.refs.data();
   const Vec3* verts = tree.verts.data();
   const float* soa = kLeafOrdered ? tree.leaf_soa.data() : nullptr;
@@ -220,23 +222,28 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
       node = &nodes[index];
     }
     if (kCount) ++counters->leaf_visits;
-    const uint32_t list = node->index();
-    const uint32_t count = refs[list];
-    const uint32_t* tris = refs + list + 1;
     if (kLeafOrdered) {
-      const float* packet = soa + static_cast<size_t>(tree.leaf_packet[index]) * kPacketFloats;
-      for (uint32_t base = 0; base < count; base += kPacketLanes, packet += kPacketFloats) {
-        const uint32_t lanes = count - base < kPacketLanes ? count - base : kPacketLanes;
-        int live = (1 << lanes) - 1;
+      const uint32_t first = node->index();
+      const float* packet =
+          first == kEmptyLeaf ? nullptr : soa + static_cast<size_t>(first) * kPacketFloats;
+      while (packet != nullptr) {
+        const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(packet + kPacketIds));
+        int live = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(ids, _mm_set1_epi32(-1)))) ^
+                   0xF;  // lanes holding a triangle (not kPadLane)
+        alignas(16) uint32_t id[kPacketLanes];
+        _mm_store_si128(reinterpret_cast<__m128i*>(id), ids);
+        const bool last = (id[0] & kLastPacket) != 0;
+        id[0] &= ~kLastPacket;
         if (kMailbox && kCount) {
           // Counting: the mailbox is checked before the test, so N_IT counts
           // the references really tested.
-          for (uint32_t l = 0; l < lanes; ++l) {
-            uint32_t& slot = mailbox[tris[base + l] & (kMailboxSlots - 1)];
-            if (slot == tris[base + l]) {
+          for (int l = 0; l < kPacketLanes; ++l) {
+            if (!(live & (1 << l))) continue;
+            uint32_t& slot = mailbox[id[l] & (kMailboxSlots - 1)];
+            if (slot == id[l]) {
               live &= ~(1 << l);
             } else {
-              slot = tris[base + l];
+              slot = id[l];
             }
           }
         }
@@ -245,7 +252,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
         while (live != 0) {
           const int l = __builtin_ctz(live);
           live &= live - 1;
-          const uint32_t tri = tris[base + l];
+          const uint32_t tri = id[l];
           if (kMailbox && !kCount) {
             // Fast path: the 4-wide reject costs the same with or without a
             // lane, so only the full test of a survivor is mailboxed.
@@ -266,8 +273,12 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
             if (kAnyHit) return best;
           }
         }
+        packet = last ? nullptr : packet + kPacketFloats;
       }
     } else {
+      const uint32_t list = node->index();
+      const uint32_t count = refs[list];
+      const uint32_t* tris = refs + list + 1;
       for (uint32_t i = 0; i < count; ++i) {
         const uint32_t tri = tris[i];
         if (kMailbox) {

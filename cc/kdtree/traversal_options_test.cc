@@ -4,6 +4,7 @@
 // triangle, t, u, v; any hit: occlusion) on every ray.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,7 @@ TEST_P(Options, EveryCombinationEqualsBruteForce) {
   ASSERT_TRUE(HasLeafLayout(*tree));
   KdTree plain = *tree;  // the same tree without the layout: vertices by index
   plain.leaf_soa.clear();
-  plain.leaf_packet.clear();
+  plain.leaf_nodes.clear();
   ASSERT_FALSE(HasLeafLayout(plain));
   const BruteForce bf(soup);
   std::vector<Ray> rays = testing::RandomRays(soup, 4000, 23);
@@ -87,16 +88,39 @@ TEST(LeafLayout, PacketsHoldEachLeafsVerticesInOrder) {
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("clipping-pruning"));
   ASSERT_TRUE(tree.ok());
   ASSERT_TRUE(HasLeafLayout(*tree));
-  size_t checked = 0;
+  size_t checked = 0, empty = 0;
   for (size_t n = 0; n < tree->nodes.size(); ++n) {
     const KdNode& node = tree->nodes[n];
-    if (!node.is_leaf()) continue;
+    ASSERT_EQ(node.is_leaf(), tree->leaf_nodes[n].is_leaf());
+    if (!node.is_leaf()) {
+      EXPECT_EQ(tree->leaf_nodes[n].bits, node.bits);  // inner nodes unchanged
+      EXPECT_EQ(tree->leaf_nodes[n].split, node.split);
+      continue;
+    }
     const uint32_t count = tree->LeafCount(node);
-    for (uint32_t j = 0; j < count; ++j) {
-      const float* packet =
-          &tree->leaf_soa[(tree->leaf_packet[n] + j / kPacketLanes) * size_t{kPacketFloats}];
+    if (count == 0) {
+      EXPECT_EQ(tree->leaf_nodes[n].index(), kEmptyLeaf);
+      ++empty;
+      continue;
+    }
+    const uint32_t first = tree->leaf_nodes[n].index();
+    const uint32_t packets = (count + kPacketLanes - 1) / kPacketLanes;
+    for (uint32_t j = 0; j < packets * kPacketLanes; ++j) {
+      const float* packet = &tree->leaf_soa[(first + j / kPacketLanes) * size_t{kPacketFloats}];
       const int lane = j % kPacketLanes;
+      uint32_t id;
+      std::memcpy(&id, &packet[kPacketIds + lane], sizeof(id));
+      const bool last = j / kPacketLanes + 1 == packets;
+      if (lane == 0) {
+        EXPECT_EQ((id & kLastPacket) != 0, last);
+        id &= ~kLastPacket;
+      }
+      if (j >= count) {
+        EXPECT_EQ(id, kPadLane);
+        continue;
+      }
       const uint32_t tri = tree->LeafBegin(node)[j];
+      EXPECT_EQ(id, tri);
       for (int v = 0; v < 3; ++v) {
         const Vec3& p = soup.v[3 * tri + v];
         EXPECT_EQ(packet[(3 * v + 0) * kPacketLanes + lane], p.x);
@@ -106,6 +130,7 @@ TEST(LeafLayout, PacketsHoldEachLeafsVerticesInOrder) {
       }
     }
   }
+  EXPECT_GT(empty, 0u);
   EXPECT_GT(checked, soup.size());
   EXPECT_GT(LeafLayoutBytes(*tree), 0u);
 }

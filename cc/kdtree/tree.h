@@ -62,11 +62,11 @@ struct KdTree {
   // which v0 + e1 of TriAccel does not reproduce.
   HugeVector<Vec3> verts;
   // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
-  // vertices in packets of 4 triangles (structure of arrays, 36 floats per
-  // packet) in leaf_soa; the leaf at nodes[i] starts at packet leaf_packet[i].
-  // Empty: traversal reads `verts` by index.
+  // vertices and indices in packets of 4 triangles (structure of arrays, 40
+  // words per packet) in leaf_soa; leaf_nodes is `nodes` with each leaf
+  // pointing at its first packet. Empty: traversal reads `verts` by index.
   HugeVector<float> leaf_soa;
-  HugeVector<uint32_t> leaf_packet;
+  HugeVector<KdNode> leaf_nodes;
   BuildCounters counters;
   double build_seconds = 0;     // T_B: triangles in memory to traversable tree
 
