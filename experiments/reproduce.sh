@@ -68,8 +68,10 @@ step "robustness: the adversarial suite and what the watertight test costs"
 # The cost bench skips (scene, preset) runs already in robust_cost.jsonl.
 bazel build --config=opt //cc/robust:robust_suite //cc/robust:robust_cost_bench
 ROBUST_BIN="$(bazel info --config=opt bazel-bin)/cc/robust"
+# Timed rounds per cost run: 5 (the report's repeats), 1 for a fast check.
+case "$PROFILE" in test|quick) COST_REPEATS=1 ;; *) COST_REPEATS=5 ;; esac
 "$ROBUST_BIN/robust_suite" --out "$RESULTS/robust.jsonl" \
-  --cost_bench "$ROBUST_BIN/robust_cost_bench" \
+  --cost_bench "$ROBUST_BIN/robust_cost_bench" --repeats "$COST_REPEATS" \
   --cost_out "$RESULTS/robust_cost.jsonl" --profile "$PROFILE" || \
   echo "reproduce: some robustness runs failed (see above)" >&2
 
