@@ -9,6 +9,8 @@
 #define KDTREE_CC_GEOMETRY_FLOAT_BITS_H_
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace kdtree {
@@ -19,12 +21,25 @@ inline constexpr float kUnitRoundoff = std::numeric_limits<float>::epsilon() * 0
 inline constexpr float Gamma(int n) { return (n * kUnitRoundoff) / (1 - n * kUnitRoundoff); }
 
 // The next float towards +infinity (-infinity); +-0 both step to the smallest
-// denormal of the right sign, infinities and NaN are returned unchanged.
+// denormal of the right sign, infinities and NaN are returned unchanged
+// (std::nextafter's answers, without the libm call: by the bit pattern).
 inline float NextFloatUp(float x) {
-  return std::isinf(x) && x > 0 ? x : std::nextafter(x, INFINITY);
+  if (!(x < INFINITY)) return x;  // +inf, NaN
+  if (x == 0.0f) return std::numeric_limits<float>::denorm_min();
+  uint32_t bits;
+  std::memcpy(&bits, &x, sizeof(bits));
+  bits = x > 0.0f ? bits + 1 : bits - 1;
+  std::memcpy(&x, &bits, sizeof(bits));
+  return x;
 }
 inline float NextFloatDown(float x) {
-  return std::isinf(x) && x < 0 ? x : std::nextafter(x, -INFINITY);
+  if (!(x > -INFINITY)) return x;  // -inf, NaN
+  if (x == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  uint32_t bits;
+  std::memcpy(&bits, &x, sizeof(bits));
+  bits = x > 0.0f ? bits - 1 : bits + 1;
+  std::memcpy(&x, &bits, sizeof(bits));
+  return x;
 }
 
 }  // namespace kdtree

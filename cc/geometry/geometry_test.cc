@@ -1,7 +1,12 @@
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "cc/geometry/aabb.h"
+#include "cc/geometry/float_bits.h"
 #include "cc/geometry/intersect.h"
 #include "cc/geometry/triangle.h"
 #include "gtest/gtest.h"
@@ -77,6 +82,34 @@ TEST(TriangleSoup, BoundsCoverAllVertices) {
   EXPECT_EQ(b.lo, Vec3(-1, 0, 0));
   EXPECT_EQ(b.hi, Vec3(1, 5, 3));
   EXPECT_EQ(s.Bounds(1).hi, Vec3(0, 5, 3));
+}
+
+// The inline FMin/FMax and NextFloatUp/Down give the libm answers bit for bit
+// (signed zeros aside for FMin/FMax, where C leaves the choice open).
+TEST(FloatBits, InlineMinMaxAndNextFloatEqualLibm) {
+  std::mt19937 rng(5);
+  std::vector<float> xs = {0.0f, -0.0f, 1.0f, -1.0f, std::numeric_limits<float>::denorm_min(),
+                           -std::numeric_limits<float>::denorm_min(),
+                           std::numeric_limits<float>::min(), std::numeric_limits<float>::max(),
+                           -std::numeric_limits<float>::max(), INFINITY, -INFINITY, NAN, 3e-39f};
+  for (int i = 0; i < 20000; ++i) {
+    uint32_t bits = rng();
+    float x;
+    std::memcpy(&x, &bits, sizeof(x));
+    xs.push_back(std::isnan(x) ? NAN : x);  // glibc answers NaN for signalling NaNs
+  }
+  auto same = [](float a, float b) {
+    return (std::isnan(a) && std::isnan(b)) || (a == b && (a != 0.0f || std::signbit(a) == std::signbit(b)));
+  };
+  for (size_t i = 0; i < xs.size(); ++i) {
+    const float x = xs[i];
+    ASSERT_TRUE(same(NextFloatUp(x), std::isinf(x) && x > 0 ? x : std::nextafter(x, INFINITY))) << x;
+    ASSERT_TRUE(same(NextFloatDown(x), std::isinf(x) && x < 0 ? x : std::nextafter(x, -INFINITY))) << x;
+    const float y = xs[(i * 7919) % xs.size()];
+    if (x == 0.0f && y == 0.0f) continue;
+    ASSERT_TRUE(same(FMin(x, y), std::fmin(x, y))) << x << " " << y;
+    ASSERT_TRUE(same(FMax(x, y), std::fmax(x, y))) << x << " " << y;
+  }
 }
 
 }  // namespace

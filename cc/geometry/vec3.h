@@ -42,12 +42,17 @@ inline Vec3 Normalize(const Vec3& a) {
   return len > 0 ? a / len : a;
 }
 
+// std::fmin / std::fmax on floats (a NaN operand yields the other one), inline:
+// GCC calls libm for them, a function call per box coordinate in the builders.
+inline float FMin(float a, float b) { return (b < a || a != a) ? b : a; }
+inline float FMax(float a, float b) { return (b > a || a != a) ? b : a; }
+
 inline Vec3 Min(const Vec3& a, const Vec3& b) {
-  return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+  return {FMin(a.x, b.x), FMin(a.y, b.y), FMin(a.z, b.z)};
 }
 
 inline Vec3 Max(const Vec3& a, const Vec3& b) {
-  return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+  return {FMax(a.x, b.x), FMax(a.y, b.y), FMax(a.z, b.z)};
 }
 
 inline bool IsFinite(const Vec3& a) {

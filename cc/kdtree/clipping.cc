@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "cc/geometry/float_bits.h"
+
 namespace kdtree {
 namespace {
 
@@ -37,8 +39,8 @@ AABB BoxOf(const V* pts, int count, bool outward) {
       float lo = static_cast<float>(pts[i].v[k]);
       float hi = lo;
       if (outward) {
-        if (static_cast<double>(lo) > pts[i].v[k]) lo = std::nextafter(lo, -INFINITY);
-        if (static_cast<double>(hi) < pts[i].v[k]) hi = std::nextafter(hi, INFINITY);
+        if (static_cast<double>(lo) > pts[i].v[k]) lo = NextFloatDown(lo);
+        if (static_cast<double>(hi) < pts[i].v[k]) hi = NextFloatUp(hi);
       }
       box.lo[k] = std::min(box.lo[k], lo);
       box.hi[k] = std::max(box.hi[k], hi);

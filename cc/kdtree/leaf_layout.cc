@@ -15,7 +15,9 @@ void LayoutLeafTriangles(KdTree* tree) {
     if (node.is_leaf()) packets += (tree->LeafCount(node) + kPacketLanes - 1) / kPacketLanes;
   }
   if (packets >= kEmptyLeaf) return;
-  tree->leaf_soa.resize(packets * kPacketFloats);
+  // Each packet is assembled here and appended: the array is written once
+  // (a resize would zero it first, a second pass over hundreds of MB).
+  tree->leaf_soa.reserve(packets * kPacketFloats);
   tree->leaf_nodes = tree->nodes;
   uint32_t next = 0;
   for (size_t n = 0; n < tree->nodes.size(); ++n) {
@@ -30,7 +32,7 @@ void LayoutLeafTriangles(KdTree* tree) {
     const uint32_t* tris = tree->LeafBegin(node);
     const uint32_t leaf_packets = (count + kPacketLanes - 1) / kPacketLanes;
     for (uint32_t j = 0; j < leaf_packets; ++j) {
-      float* packet = &tree->leaf_soa[(static_cast<size_t>(next) + j) * kPacketFloats];
+      float packet[kPacketFloats] = {};  // padding lanes: zero vertices
       for (int lane = 0; lane < kPacketLanes; ++lane) {
         const uint32_t k = j * kPacketLanes + lane;
         uint32_t id = kPadLane;
@@ -42,12 +44,11 @@ void LayoutLeafTriangles(KdTree* tree) {
             packet[(3 * v + 1) * kPacketLanes + lane] = p.y;
             packet[(3 * v + 2) * kPacketLanes + lane] = p.z;
           }
-        } else {
-          for (int w = 0; w < 9; ++w) packet[w * kPacketLanes + lane] = 0.0f;
         }
         if (lane == 0 && j + 1 == leaf_packets) id |= kLastPacket;
         std::memcpy(&packet[kPacketIds + lane], &id, sizeof(id));
       }
+      tree->leaf_soa.insert(tree->leaf_soa.end(), packet, packet + kPacketFloats);
     }
     next += leaf_packets;
   }
