@@ -71,16 +71,6 @@ ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout o
 namespace kdtree {
 namespace {
 
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-std::string Array(const std::vector<double>& v) {
-  std::vector<std::string> parts;
-  for (double d : v) parts.push_back(JsonNumber(d));
-  return absl::StrCat("[", absl::StrJoin(parts, ", "), "]");
-}
 
 struct Entry {
   Entry(std::string n, const Tracer* t) : name(std::move(n)), tracer(t) {}
@@ -224,7 +214,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
                       absl::StrFormat("%s: {\"T_R_runs\": %s, \"T_R_median\": %s, \"T_R_min\": %s, "
                                       "\"mrays_per_s_median\": %s, \"primary_s_median\": %s, "
                                       "\"secondary_s_median\": %s}",
-                                      JsonQuote(e.name), Array(e.runs), JsonNumber(Median(e.runs)),
+                                      JsonQuote(e.name), JsonNumberArray(e.runs), JsonNumber(Median(e.runs)),
                                       JsonNumber(*std::min_element(e.runs.begin(), e.runs.end())),
                                       JsonNumber(e.rays / Median(e.runs) / 1e6),
                                       JsonNumber(Median(e.primary)), JsonNumber(Median(e.secondary))));

@@ -1,5 +1,6 @@
 #include "cc/render/json.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -329,6 +330,22 @@ std::string JsonQuote(const std::string& s) {
 std::string JsonNumber(double d) {
   if (!std::isfinite(d)) return "null";
   return absl::StrFormat("%.10g", d);
+}
+
+std::string JsonNumberArray(const std::vector<double>& values) {
+  std::string out = "[";
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) out += ", ";
+    out += JsonNumber(values[i]);
+  }
+  return out + "]";
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace kdtree

@@ -70,8 +70,15 @@ absl::StatusOr<JsonValue> LoadJsonFile(const std::string& path);
 // >= 0x80 passed through as UTF-8).
 std::string JsonQuote(const std::string& s);
 
-// A JSON number: %.9g for finite values, null for NaN or infinity.
+// A JSON number: %.10g for finite values, null for NaN or infinity.
 std::string JsonNumber(double d);
+
+// A JSON array of JsonNumbers, e.g. every timed run of a step.
+std::string JsonNumberArray(const std::vector<double>& values);
+
+// The median of timed runs (mean of the middle two for an even count; 0 for
+// none): the figure the report quotes of repeated timings.
+double Median(std::vector<double> values);
 
 }  // namespace kdtree
 

@@ -67,5 +67,13 @@ TEST(Json, QuoteEscapes) {
   EXPECT_EQ(JsonNumber(1.0 / 0.0), "null");
 }
 
+TEST(Json, NumberArrayAndMedianOfRuns) {
+  EXPECT_EQ(JsonNumberArray({}), "[]");
+  EXPECT_EQ(JsonNumberArray({1.5, 0.25, INFINITY}), "[1.5, 0.25, null]");
+  EXPECT_EQ(Median({}), 0.0);
+  EXPECT_EQ(Median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(Median({4.0, 1.0, 3.0, 2.0}), 2.5);
+}
+
 }  // namespace
 }  // namespace kdtree

@@ -119,17 +119,6 @@ class Progress {
   bool tty_, shown_ = false;
 };
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-std::string Array(const std::vector<double>& v) {
-  std::vector<std::string> parts;
-  for (double d : v) parts.push_back(JsonNumber(d));
-  return absl::StrCat("[", absl::StrJoin(parts, ", "), "]");
-}
 uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
   uint64_t h = 0xcbf29ce484222325ull;
   for (uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ull;
@@ -166,7 +155,7 @@ Timed TimeRenders(const TriangleSoup& soup, const Tracer& tracer, const View& vi
 }
 std::string EffectJson(const char* name, uint64_t rays, const std::vector<double>& runs) {
   return absl::StrFormat("%s: {\"rays\": %d, \"seconds\": %s, \"seconds_runs\": %s}", JsonQuote(name),
-                         rays, JsonNumber(Median(runs)), Array(runs));
+                         rays, JsonNumber(Median(runs)), JsonNumberArray(runs));
 }
 std::string TraversalJson(const TraversalCounters& c) {
   const double n = c.rays ? static_cast<double>(c.rays) : 1.0;
@@ -314,8 +303,8 @@ absl::Status Run() {
         "\"disagreements_grazing\": %d, \"disagreements_at_origin\": %d, \"disagreements_t_guard\": %d, "
         "\"disagreements_other\": %d, "
         "\"perf_ratio_kd_over_embree\": %s}",
-        JsonQuote(EmbreeQualityName(*quality)), JsonNumber(Median(eb_runs)), Array(eb_runs),
-        JsonNumber(e_tr), Array(et.t_r), JsonNumber(pixels / e_tr / 1000.0),
+        JsonQuote(EmbreeQualityName(*quality)), JsonNumber(Median(eb_runs)), JsonNumberArray(eb_runs),
+        JsonNumber(e_tr), JsonNumberArray(et.t_r), JsonNumber(pixels / e_tr / 1000.0),
         JsonNumber(er.total_rays() / e_tr), er.p_hit, er.p_miss, er.s_hit, er.s_miss,
         EffectJson("primary", er.primary.rays, et.t_primary), EffectJson("shadow", er.shadow.rays, et.t_shadow),
         EffectJson("ao", er.ao.rays, et.t_ao), d.all.total(), d.all.grazing, d.all.at_origin, d.all.t_guard, d.all.other(),
@@ -357,7 +346,7 @@ absl::Status Run() {
       c.use_pruning ? "true" : "false", c.cast_shadow_rays ? "true" : "false",
       c.seed_compatible ? "true" : "false", JsonQuote(c.ToEnvironment()), JsonQuote(view_source),
       JsonQuote(ViewToText(view)), view.width, view.height, view.lights.size(), threads, repeats, JsonNumber(budget_s),
-      JsonNumber(Median(tb_runs)), Array(tb_runs), JsonNumber(t_r), Array(kt.t_r),
+      JsonNumber(Median(tb_runs)), JsonNumberArray(tb_runs), JsonNumber(t_r), JsonNumberArray(kt.t_r),
       JsonNumber(pixels / t_r / 1000.0), JsonNumber(r.total_rays() / t_r), r.total_rays(),
       JsonNumber(counts.n_it()), JsonNumber(counts.n_tr()), TraversalJson(counts.by_kind[0]),
       TraversalJson(counts.by_kind[1]), TraversalJson(counts.by_kind[2]), counts.result_mismatches,
