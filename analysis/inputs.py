@@ -87,3 +87,15 @@ def load_seed_table1(path=None):
     path = path or os.path.join(SEED_DIR, "table1.csv")
     df = pd.read_csv(path, dtype={"name": str})
     return df.set_index("report_scene", drop=False)
+
+
+def load_seed_tables2_10(path=None):
+    """The report's Tables 2-10 in long format (analysis/seed/tables2_10.csv):
+    one row per printed cell with table, report_scene, variant (our preset
+    name), metric, value (float; NaN where the seed prints "-"), printed (the
+    cell's text as printed) and seed_line. See analysis/seed/README.md."""
+    path = path or os.path.join(SEED_DIR, "tables2_10.csv")
+    df = pd.read_csv(path, dtype={"variant": str, "metric": str,
+                                  "printed": str})
+    df["value"] = pd.to_numeric(df["value"], errors="raise")
+    return df

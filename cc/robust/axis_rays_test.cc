@@ -56,9 +56,7 @@ TEST_P(AxisRays, EveryPresetMatchesBruteForce) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, AxisRays,
                          ::testing::Values("tiny", "stairs", "voxels", "sphere", "thin", "flat"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
-                         });
+                         SceneParamName());
 
 }  // namespace
 }  // namespace robust

@@ -27,6 +27,13 @@ inline void ExpectNoMismatches(const std::string& case_name,
   }
 }
 
+// Names a suite's instances after their scene (robust_scenes.h SmallSceneNames).
+struct SceneParamName {
+  std::string operator()(const ::testing::TestParamInfo<std::string>& info) const {
+    return info.param;
+  }
+};
+
 }  // namespace robust
 }  // namespace kdtree
 

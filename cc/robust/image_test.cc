@@ -60,12 +60,8 @@ TEST_P(Image, EveryPresetEqualsBruteForcePixelForPixel) {
                      CheckAllPresets("image/" + scene, soup, rays, BothModes(), options));
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, Image,
-                         ::testing::Values("tiny", "stairs", "voxels", "sphere", "thin", "flat",
-                                           "blocks"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
-                         });
+INSTANTIATE_TEST_SUITE_P(Scenes, Image, ::testing::ValuesIn(SmallSceneNames()),
+                         SceneParamName());
 
 }  // namespace
 }  // namespace robust

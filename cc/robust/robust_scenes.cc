@@ -79,6 +79,10 @@ TriangleSoup Icosphere(int levels, double radius, const double centre[3]) {
   return soup;
 }
 
+std::vector<std::string> SmallSceneNames() {
+  return {"tiny", "stairs", "voxels", "sphere", "thin", "flat", "blocks"};
+}
+
 TriangleSoup SmallScene(const std::string& name) {
   if (name == "tiny") {
     TriangleSoup s;

@@ -33,6 +33,9 @@ TriangleSoup Icosphere(int levels, double radius, const double centre[3]);
 // plane, a sliver), "stairs", "voxels", "sphere", "thin", "flat", "blocks".
 TriangleSoup SmallScene(const std::string& name);
 
+// The names SmallScene knows, in that order (the suites' test parameters).
+std::vector<std::string> SmallSceneNames();
+
 // The scene with every coordinate multiplied by s (in double, rounded once).
 TriangleSoup Scaled(const TriangleSoup& soup, double s);
 

@@ -84,12 +84,8 @@ TEST_P(SplitOrigins, EveryPresetMatchesBruteForce) {
                      CheckAllPresets("split_origins/" + scene, soup, rays, BothModes(), options));
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SplitOrigins,
-                         ::testing::Values("tiny", "stairs", "voxels", "sphere", "thin", "flat",
-                                           "blocks"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
-                         });
+INSTANTIATE_TEST_SUITE_P(Scenes, SplitOrigins, ::testing::ValuesIn(SmallSceneNames()),
+                         SceneParamName());
 
 }  // namespace
 }  // namespace robust
