@@ -1,4 +1,8 @@
+import csv
+import decimal
+import math
 import os
+import re
 import tempfile
 import unittest
 
@@ -37,6 +41,209 @@ class SeedTable1CsvTest(unittest.TestCase):
         self.assertEqual(df.loc[16, "p_miss"], 0)
         self.assertEqual(df.loc[18, "n_tri"], 968)
         self.assertEqual(int(df["n_tri"].sum()), 42612619)
+
+
+VARIANTS = ["median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
+            "binning-8", "binning-32", "clipping", "pruning",
+            "clipping-pruning"]
+METRICS = {2: ["T_B", "T_R", "perf", "N_IT", "N_TR"],
+           5: ["N_I", "N_L", "N_TP", "N_AP", "mem"],
+           8: ["R_E", "D_max", "D_avg", "N_CL", "N_PR"]}
+
+
+def table_of(variant, metric):
+    """The report's table holding (variant, metric): 2-10."""
+    first = [t for t, ms in METRICS.items() if metric in ms][0]
+    return first + VARIANTS.index(variant) // 3
+
+
+class SeedTables2To10CsvTest(unittest.TestCase):
+    """The transcription of the report's Tables 2-10 (tables2_10.csv)."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.df = inputs.load_seed_tables2_10()
+        cls.cell = {(r.report_scene, r.variant, r.metric): r
+                    for r in cls.df.itertuples()}
+
+    def value(self, scene, variant, metric):
+        return self.cell[(scene, variant, metric)].value
+
+    def printed(self, scene, variant, metric):
+        return self.cell[(scene, variant, metric)].printed
+
+    def test_shape(self):
+        # 18 scenes x 9 variants x 15 metrics, minus Table 7 rows 13-18
+        # (the seed stops after row 13's first two cells).
+        df = self.df
+        self.assertEqual(len(df), 18 * 9 * 15 - (6 * 15 - 2))
+        self.assertFalse(df.duplicated(["report_scene", "variant",
+                                        "metric"]).any())
+        self.assertEqual(sorted(df["variant"].unique()), sorted(VARIANTS))
+        self.assertEqual(sorted(df["report_scene"].unique()),
+                         list(range(1, 19)))
+        for (table, variant, metric), n in df.groupby(
+                ["table", "variant", "metric"]).size().items():
+            self.assertEqual(table, table_of(variant, metric))
+            if table != 7:
+                self.assertEqual(n, 18, (variant, metric))
+        t7 = df[df["table"] == 7]
+        self.assertEqual(len(t7), 12 * 15 + 2)
+        self.assertEqual(sorted(t7["report_scene"].unique()),
+                         list(range(1, 14)))
+        row13 = t7[t7["report_scene"] == 13]
+        self.assertEqual(sorted(zip(row13["variant"], row13["metric"])),
+                         [("clipping", "N_I"), ("clipping", "N_L")])
+
+    def test_dashes_are_empty_values(self):
+        empty = self.df[self.df["value"].isna()]
+        self.assertEqual(set(empty["printed"]), {"-"})
+        self.assertEqual(len(empty), 14)
+        self.assertEqual(set(empty["report_scene"]), {16})
+        self.assertEqual(set(empty["variant"]), {"median-16-2"})
+        self.assertEqual(self.value(16, "median-16-2", "T_B"), 1.963)
+
+    def test_values_are_the_printed_text(self):
+        # value = printed without thousands separators; a comma that cannot
+        # be one (and every comma's last one in mem) is a decimal comma.
+        for r in self.df.itertuples():
+            if r.printed == "-":
+                continue
+            text = r.printed
+            if "," in text and (r.metric == "mem" or not re.match(
+                    r"^\d{1,3}(,\d{3})+(\.\d+)?$", text)):
+                head, tail = text.rsplit(",", 1)
+                text = head + "." + tail
+            self.assertEqual(r.value, float(text.replace(",", "")),
+                             (r.table, r.report_scene, r.variant, r.metric))
+
+    def test_spot_values(self):
+        # Checked by hand against the seed text (line numbers in brackets).
+        v = self.value
+        self.assertEqual(v(1, "median-16-2", "T_B"), 0.045)  # 199
+        self.assertEqual(v(3, "median-16-2", "N_IT"), 2404.63)  # 201
+        self.assertEqual(v(12, "median-24-2", "T_B"), 2718)  # 210, odd
+        self.assertEqual(self.printed(12, "median-24-2", "T_B"), "2,718")
+        self.assertEqual(v(4, "binning-8-driving", "perf"), 2207.0)  # 225
+        self.assertEqual(v(12, "binning-8", "T_B"), 15.417)  # 233
+        self.assertEqual(v(18, "binning-32", "N_IT"), 14.91)  # 239
+        self.assertEqual(v(18, "binning-32", "N_TR"), 4.88)  # 239
+        self.assertEqual(v(1, "pruning", "perf"), 4923)  # 245
+        self.assertEqual(v(15, "clipping", "T_B"), 12.068)  # 259
+        self.assertEqual(v(18, "clipping-pruning", "N_IT"), 11.11)  # 262
+        self.assertEqual(v(1, "median-16-2", "mem"), 3.031)  # 270
+        self.assertEqual(self.printed(1, "median-16-2", "mem"), "3,031")
+        self.assertEqual(v(3, "median-16-2", "N_AP"), 1100)  # 272
+        self.assertEqual(v(18, "median-24-8", "N_AP"), 7)  # 287
+        self.assertEqual(v(3, "binning-32", "N_I"), 1566865)  # 295
+        self.assertEqual(v(12, "binning-8-driving", "N_TP"),
+                         162446831)  # 304
+        self.assertEqual(self.printed(14, "binning-32", "N_TP"),
+                         "29,121,159,2")  # 306, odd
+        self.assertEqual(v(12, "clipping", "mem"), 1866.848)  # 327
+        self.assertEqual(v(13, "clipping", "N_L"), 239811)  # 328
+        self.assertEqual(v(7, "median-24-2", "R_E"), 0.026)  # 340
+        self.assertEqual(v(18, "median-24-8", "D_avg"), 19)  # 351
+        self.assertEqual(v(7, "binning-8-driving", "R_E"), 0.083)  # 363
+        self.assertEqual(v(1, "clipping-pruning", "N_PR"), 137257)  # 380
+        self.assertEqual(v(12, "pruning", "N_PR"), 65196180)  # 391
+        self.assertEqual(v(18, "clipping", "N_CL"), 4983)  # 397
+        self.assertEqual(self.cell[(18, "clipping", "N_CL")].seed_line, 397)
+
+    def test_row18_agrees_with_the_separate_transcription(self):
+        # data/seed/row18.csv was transcribed independently of this file.
+        path = os.path.join(os.path.dirname(os.path.dirname(
+            os.path.abspath(inputs.__file__))), "data", "seed", "row18.csv")
+        with open(path, encoding="utf-8") as f:
+            rows = list(csv.DictReader(
+                line for line in f if not line.startswith("#")))
+        self.assertEqual(len(rows), 9)
+        for row in rows:
+            for metric in ("N_I", "N_L", "N_TP", "N_AP", "R_E", "D_max",
+                           "D_avg", "N_CL", "N_PR"):
+                key = (18, row["preset"], metric)
+                if row[metric] == "":
+                    self.assertNotIn(key, self.cell)
+                else:
+                    self.assertEqual(self.value(*key), float(row[metric]),
+                                     key)
+
+    def test_perf_is_primary_rays_over_render_time(self):
+        # perf [krays/s] = 640,000 primary rays / T_R, within the rounding
+        # of both printed numbers (shadow rays are not counted).
+        n = 0
+        for (scene, variant, metric), r in self.cell.items():
+            if metric != "perf" or r.printed == "-":
+                continue
+            t_r = self.cell[(scene, variant, "T_R")]
+            half = 0.5 * 10.0 ** decimal.Decimal(
+                t_r.printed).as_tuple().exponent
+            lo = 640.0 / (r.value + 0.5)
+            hi = 640.0 / (r.value - 0.5)
+            self.assertTrue(lo <= t_r.value + half and
+                            hi >= t_r.value - half,
+                            (scene, variant, r.value, t_r.value))
+            n += 1
+        self.assertEqual(n, 161)
+
+    def test_leaves_are_internal_nodes_plus_one(self):
+        # A binary tree has N_L = N_I + 1; the seed prints N_L = N_I in
+        # four cells (README), nowhere else.
+        odd = set()
+        for (scene, variant, metric), r in self.cell.items():
+            if metric != "N_I" or r.printed == "-":
+                continue
+            n_l = self.value(scene, variant, "N_L")
+            if n_l != r.value + 1:
+                self.assertEqual(n_l, r.value)
+                odd.add((scene, variant))
+        self.assertEqual(odd, {(10, "median-24-8"), (12, "median-24-2"),
+                               (14, "binning-32"), (4, "pruning")})
+
+    def test_average_leaf_size(self):
+        # N_AP = N_TP / N_L to the two significant digits printed, except
+        # the two garbled cells of row 10 (README).
+        odd = set()
+        for (scene, variant, metric), r in self.cell.items():
+            if metric != "N_AP" or r.printed == "-":
+                continue
+            ratio = (self.value(scene, variant, "N_TP") /
+                     self.value(scene, variant, "N_L"))
+            tol = 0.5 * 10.0 ** (math.floor(math.log10(ratio)) - 1)
+            if abs(r.value - ratio) > tol + 1e-9:
+                odd.add((scene, variant))
+        self.assertEqual(odd, {(10, "median-24-2"),
+                               (10, "clipping-pruning")})
+
+    def test_pruning_column_has_the_binning_32_tree(self):
+        # Same N_I in all 12 printed rows of Table 7; same N_L too except
+        # row 4, where Pruning's N_L is printed equal to its N_I.
+        for scene in range(1, 13):
+            self.assertEqual(self.value(scene, "pruning", "N_I"),
+                             self.value(scene, "binning-32", "N_I"))
+            if scene != 4:
+                self.assertEqual(self.value(scene, "pruning", "N_L"),
+                                 self.value(scene, "binning-32", "N_L"))
+
+    def test_depth_clipping_pruning_columns(self):
+        for (scene, variant, metric), r in self.cell.items():
+            if r.printed == "-":
+                continue
+            key = (scene, variant, metric)
+            if metric == "D_max":
+                self.assertEqual(
+                    r.value, 16 if variant == "median-16-2" else 24, key)
+            if metric == "D_avg":
+                self.assertLessEqual(r.value,
+                                     self.value(scene, variant, "D_max"))
+            if metric == "R_E":
+                self.assertTrue(0 <= r.value <= 1, key)
+            if metric == "N_CL":
+                self.assertEqual(r.value > 0, variant in (
+                    "clipping", "clipping-pruning"), key)
+            if metric == "N_PR":
+                self.assertEqual(r.value > 0, variant in (
+                    "pruning", "clipping-pruning"), key)
 
 
 class SeedTable1RenderTest(unittest.TestCase):
