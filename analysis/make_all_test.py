@@ -7,6 +7,7 @@ from analysis import accuracy
 from analysis import make_all
 from analysis import robustness
 from analysis import row18
+from analysis import seed_tables
 from analysis import testdata
 
 # Every \newcommand that report/main.tex relies on must be generated.
@@ -26,7 +27,7 @@ EXPECTED_MACROS = [
     "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
     "GalleryImages"
-] + robustness.MACROS + accuracy.MACROS
+] + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS
 
 
 class MakeAllTest(unittest.TestCase):

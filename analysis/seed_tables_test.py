@@ -1,5 +1,7 @@
+import copy
 import csv
 import decimal
+import json
 import math
 import os
 import re
@@ -8,6 +10,7 @@ import unittest
 
 from analysis import context
 from analysis import inputs
+from analysis import kdtree_results as kr
 from analysis import seed_tables
 from analysis import testdata
 
@@ -252,7 +255,9 @@ class SeedTable1RenderTest(unittest.TestCase):
             results, manifest = testdata.write_fixture(d)
             out = os.path.join(d, "gen")
             ctx = context.Context(results, manifest, out)
-            self.assertEqual(seed_tables.generate(ctx), {})
+            macros = seed_tables.generate(ctx)
+            self.assertEqual(sorted(macros),
+                             sorted(seed_tables.COMPARE_MACROS))
             with open(os.path.join(out, "seed_table1.tex"),
                       encoding="utf-8") as f:
                 text = f.read()
@@ -267,6 +272,107 @@ class SeedTable1RenderTest(unittest.TestCase):
                       "& 248,723 & --- & --- \\\\", text)
         self.assertIn("3 & asianDragon", text)
         self.assertIn("13 & lost.empire", text)
+
+
+def kd_record(scene, preset, n_it, n_tr):
+    return {"ok": True, "scene": scene, "preset": preset, "n_tri": 1000,
+            "T_B": 0.5, "T_R": 1.0, "perf_krays": 640.0, "N_IT": n_it,
+            "N_TR": n_tr, "tree": {"N_I": 99, "N_L": 100}}
+
+
+class SeedCompareTest(unittest.TestCase):
+    """seed_compare.tex and its scene-18 macros on a small fixture."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        manifest = copy.deepcopy(testdata.MANIFEST)
+        roles = {"armadillo": "stand-in", "city_gen": "variant",
+                 "suzanne": "original", "not_fetched": "stand-in"}
+        for scene in manifest["scenes"]:
+            scene["role"] = roles.get(scene["name"], "extra")
+        results, manifest_path = testdata.write_fixture(
+            self.tmp.name, manifest=manifest)
+        recs = []
+        for i, v in enumerate(kr.VARIANTS):
+            # suzanne: lowest N_IT with pruning (index 7), N_TR tied between
+            # clipping and clipping-pruning
+            recs.append(kd_record("suzanne", v, 20.0 - i if i <= 7 else 30.0,
+                                  3.5 if v.startswith("clipping") else 9.0))
+            recs.append(kd_record("bunny", v, 1.0, 1.0))  # no report scene
+            recs.append(kd_record("city_gen", v,
+                                  7.0 if v == "binning-8" else 8.0, 2.0))
+        # armadillo: only three presets ran; a failed record is ignored
+        recs.append(kd_record("armadillo", "median-16-2", 40.0, 6.0))
+        recs.append(kd_record("armadillo", "median-24-2", 12.5, 9.0))
+        recs.append(kd_record("armadillo", "binning-32", 13.0, 5.25))
+        recs.append({"ok": False, "scene": "armadillo", "preset": "pruning",
+                     "N_IT": 0.1})
+        with open(os.path.join(results, kr.KDTREE_FILE), "w") as f:
+            for r in recs:
+                f.write(json.dumps(r) + "\n")
+        self.out = os.path.join(self.tmp.name, "gen")
+        self.ctx = context.Context(results, manifest_path, self.out)
+        self.macros = seed_tables.generate(self.ctx)
+        with open(os.path.join(self.out, "seed_compare.tex"),
+                  encoding="utf-8") as f:
+            self.text = f.read()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_report_best_per_scene(self):
+        best = seed_tables.seed_best(inputs.load_seed_tables2_10())
+        self.assertEqual(sorted(best), list(range(1, 19)))
+        # scene 18: N_IT 10.97 (Pruning), N_TR 4.67 (Clipping pruning)
+        self.assertEqual(best[18]["N_IT"], (10.97, "10.97", ["pruning"]))
+        self.assertEqual(best[18]["N_TR"], (4.67, "4.67",
+                                            ["clipping-pruning"]))
+        # scene 4 N_TR: 5.15 in four columns; scene 16 ignores the dashes
+        self.assertEqual(best[4]["N_TR"][2], ["binning-32", "clipping",
+                                              "pruning", "clipping-pruning"])
+        self.assertEqual(best[16]["N_IT"][:2], (132.94, "132.94"))
+
+    def test_table_rows(self):
+        self.assertIn("\\label{tab:seedcmp}", self.text)
+        self.assertIn(
+            "18 & suzanne & 10.97 & Pruning & 4.67 & Clipping pruning & "
+            "suzanne & \\textbf{report's mesh} & 13.0 & Pruning & 3.50 & "
+            "Clipping, Clipping pruning \\\\", self.text)
+        self.assertIn(
+            "2 & Armadillo & 9.8 & Pruning & 6.93 & Spatial median 16/2 & "
+            "armadillo (3/9) & stand-in & 12.5 & Spatial median 24/2 & 5.25 "
+            "& Binning 32 \\\\", self.text)
+        # a variant stand-in; a report scene without any of ours
+        self.assertIn("5 & city & 15.46 & Pruning & 10.74 & Clipping pruning"
+                      " & city\\_gen & variant & 7.00 & Binning 8 & 2.00 & "
+                      "Spatial median 16/2, Spatial median 24/2, ", self.text)
+        self.assertIn("3 & asianDragon & 21.13 & Pruning & 7.42 & Spatial "
+                      "median 16/2 & --- &  & --- & --- & --- & --- \\\\",
+                      self.text)
+        self.assertNotIn("bunny", self.text)
+        self.assertEqual(self.text.count(" \\\\\n"), 18 + 1 + 1)
+        self.assertIn("only scene~18 is a like-for-like", self.text)
+        self.assertIn("camera and lights differ", self.text)
+
+    def test_scene18_macros(self):
+        m = self.macros
+        self.assertEqual(m["SeedCmpReportNIT"], ("10.97", False))
+        self.assertEqual(m["SeedCmpReportNITBy"], ("Pruning", True))
+        self.assertEqual(m["SeedCmpReportNTR"], ("4.67", False))
+        self.assertEqual(m["SeedCmpOurNIT"], ("13.0", True))
+        self.assertEqual(m["SeedCmpOurNITBy"], ("Pruning", True))
+        self.assertEqual(m["SeedCmpOurNTR"], ("3.50", True))
+        self.assertEqual(m["SeedCmpOurNTRBy"],
+                         ("Clipping, Clipping pruning", True))
+        self.assertEqual(m["SeedCmpOurScene"], ("suzanne", False))
+
+    def test_no_kdtree_results(self):
+        os.remove(os.path.join(self.ctx.results_dir, kr.KDTREE_FILE))
+        ctx = context.Context(self.ctx.results_dir, self.ctx.manifest_path,
+                              os.path.join(self.tmp.name, "gen2"))
+        macros = seed_tables.generate(ctx)
+        self.assertEqual(macros["SeedCmpOurNIT"], ("---", True))
+        self.assertEqual(macros["SeedCmpReportNIT"], ("10.97", False))
 
 
 if __name__ == "__main__":
