@@ -59,9 +59,10 @@ std::vector<RaySpec> CommonRays(const TriangleSoup& soup) {
     grid.points[a] = GridPoints(WithMidpoints(Sample(VertexCoordinates(soup, b), 60)),
                                 WithMidpoints(Sample(VertexCoordinates(soup, c), 60)), 6000, 8);
   }
-  for (const Ray& r : AxisParallelRays(soup.Bounds(), grid)) specs.push_back({r});
-  for (const Ray& r : testing::RandomRays(soup, 10000, 61)) specs.push_back({r});
-  for (const Ray& r : testing::CameraRays(soup, 150, 150)) specs.push_back({r});
+  const auto free_ray = [&specs](const Ray& r) { specs.push_back(RaySpec{r, false, Vec3()}); };
+  for (const Ray& r : AxisParallelRays(soup.Bounds(), grid)) free_ray(r);
+  for (const Ray& r : testing::RandomRays(soup, 10000, 61)) free_ray(r);
+  for (const Ray& r : testing::CameraRays(soup, 150, 150)) free_ray(r);
   return specs;
 }
 
