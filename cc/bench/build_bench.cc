@@ -5,10 +5,11 @@
 // For each preset the tree is first validated (tree invariants, and
 // --check_rays seeded rays against the brute-force reference), then built
 // --repeats times; one JSON line per preset and thread count goes to --out
-// with the median T_B, every run's T_B, the throughput (triangles / T_B) and
-// the tree statistics (cc/kdtree/stats.h). With several --threads values the
-// runs are interleaved (1, 2, 1, 2, ...) so that load from other processes
-// falls on both alike.
+// with the median T_B, every run's T_B, the throughput (triangles / T_B), the
+// tree statistics (cc/kdtree/stats.h) and the tree's fingerprint; every timed
+// build must write the validated tree (same fingerprint). With several
+// --threads values the runs are interleaved (1, 2, 1, 2, ...) so that load
+// from other processes falls on both alike.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -112,6 +113,7 @@ int Run() {
       return 1;
     }
     const TreeStats stats = ComputeStats(*tree);
+    const uint64_t fingerprint = TreeFingerprint(*tree);
     int mismatches = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
       const Hit h = Intersect(*tree, rays[i]);
@@ -141,6 +143,13 @@ int Run() {
         Config c = *config;
         c.build_threads = thread_counts[k];
         absl::StatusOr<KdTree> t = BuildKdTree(*soup, c);
+        // Every timed build must write the validated tree (the parallel
+        // build writes the serial one byte for byte).
+        if (!t.ok() || TreeFingerprint(*t) != fingerprint) {
+          std::fprintf(stderr, "build_bench: %s: timed build %d (threads %d) wrote another tree\n",
+                       preset.c_str(), r, thread_counts[k]);
+          return 1;
+        }
         runs_by_threads[k].push_back(t->build_seconds);
       }
     }
@@ -152,7 +161,8 @@ int Run() {
     std::fprintf(out,
                  "{\"scene\": \"%s\", \"mesh\": \"%s\", \"n_tri\": %zu, \"preset\": \"%s\", "
                  "\"threads\": %d, \"optimized\": %s, \"T_B\": %.6f, \"T_B_runs\": [%s], "
-                 "\"mtri_per_s\": %.4f, \"checked_rays\": %zu, \"stats\": %s}\n",
+                 "\"mtri_per_s\": %.4f, \"checked_rays\": %zu, \"tree_fingerprint\": \"%016llx\", "
+                 "\"stats\": %s}\n",
                  name.c_str(), mesh.c_str(), soup->size(), preset.c_str(), thread_counts[k],
 #ifdef __OPTIMIZE__
                  "true",
@@ -163,7 +173,7 @@ int Run() {
                    absl::StrAppendFormat(o, "%.6f", v);
                  }).c_str(),
                  median > 0 ? soup->size() / median * 1e-6 : 0.0, rays.size(),
-                 StatsToJson(stats).c_str());
+                 static_cast<unsigned long long>(fingerprint), StatsToJson(stats).c_str());
     std::fflush(out);
     std::fprintf(stderr, "  %-18s threads %d  T_B %8.3f s  %6.3f Mtri/s  N_I %10llu  N_TP %11llu\n",
                  preset.c_str(), thread_counts[k], median,

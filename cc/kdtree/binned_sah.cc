@@ -9,6 +9,27 @@
 namespace kdtree {
 namespace {
 
+// The candidate planes of `bins` bins (bins - 1), rounded up to whole SSE
+// vectors.
+int PaddedPlanes(int bins) { return (bins - 1 + 3) / 4 * 4; }
+
+// Sizes the per-plane arrays once for this bin count (a resize per node
+// would refill them every time).
+void SizePlaneArrays(int bins, BinScratch* s) {
+  const size_t padded = static_cast<size_t>(PaddedPlanes(bins));
+  if (s->n_left.size() == padded) return;
+  s->n_left.assign(padded, 0.0f);
+  s->n_right.assign(padded, 0.0f);
+  s->cost.assign(padded, 0.0f);
+  s->plane.assign(padded, 0.0f);
+}
+
+// `n` zeroed counters in `v` (resized only when the bin count changes).
+void ZeroCounters(size_t n, std::vector<uint32_t>* v) {
+  if (v->size() != n) v->resize(n);
+  std::fill(v->begin(), v->end(), 0u);
+}
+
 // BinOf on four lanes: the same IEEE operations in the same order (sub, mul,
 // div are exactly rounded per lane, so every lane equals the scalar value),
 // then the same clamp: max(f, 0) is 0 for NaN (MAXPS returns its second
@@ -36,12 +57,9 @@ void RelaxedCosts(const AABB& box, int axis, int bins, BinScratch* s) {
   const Vec3 e = box.Extent();
   const float lo = box.lo[axis], hi = box.hi[axis];
   const float extent = hi - lo;
-  const int planes = bins - 1;
-  const int padded = (planes + 3) / 4 * 4;
-  s->n_left.resize(padded, 0.0f);
-  s->n_right.resize(padded, 0.0f);
-  s->cost.resize(padded);
-  s->plane.resize(padded);
+  const int padded = PaddedPlanes(bins);
+  // SweepCounts sized every array to `padded`; the lanes past bins - 1 hold
+  // whatever an earlier node left there and their costs are never read.
   const __m128 vlo = _mm_set1_ps(lo), vhi = _mm_set1_ps(hi), vext = _mm_set1_ps(extent);
   const __m128 vbins = _mm_set1_ps(static_cast<float>(bins));
   const __m128 ex = _mm_set1_ps(e.x), ey = _mm_set1_ps(e.y), ez = _mm_set1_ps(e.z);
@@ -78,8 +96,7 @@ void SweepCounts(const uint32_t* starts, const uint32_t* ends, size_t n, const A
   const float extent = box.hi[axis] - lo;
   float n_left = 0.0f, n_right = static_cast<float>(n);
   if (!config.full_sah) {
-    s->n_left.resize(bins - 1);
-    s->n_right.resize(bins - 1);
+    SizePlaneArrays(bins, s);
     for (int i = 0; i + 1 < bins; ++i) {
       n_left += static_cast<float>(starts[i]);
       n_right -= static_cast<float>(ends[i]);
@@ -112,17 +129,45 @@ void SweepCounts(const uint32_t* starts, const uint32_t* ends, size_t n, const A
   }
 }
 
-// One axis (the driving axis): counts with the scalar BinOf, then sweeps.
+// One axis (the driving axis): counts, then sweeps. The bins of four
+// references at a time come from BinOf4 (the scalar BinOf's value in every
+// lane); the rest from BinOf.
 void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bins,
                const Config& config, BinScratch* s, Split* best) {
   const float lo = box.lo[axis];
   const float extent = box.hi[axis] - lo;
   if (!(extent > 0.0f)) return;
-  s->starts.assign(bins, 0);
-  s->ends.assign(bins, 0);
-  for (size_t i = 0; i < n; ++i) {
-    ++s->starts[BinOf(refs[i].box.lo[axis], lo, extent, bins)];
-    ++s->ends[BinOf(refs[i].box.hi[axis], lo, extent, bins)];
+  ZeroCounters(bins, &s->starts);
+  ZeroCounters(bins, &s->ends);
+  uint32_t* st = s->starts.data();
+  uint32_t* en = s->ends.data();
+  static_assert(sizeof(BuildRef) == 7 * sizeof(float), "a reference is 7 words");
+  static_assert(sizeof(AABB) == 6 * sizeof(float), "box is lo.xyz, hi.xyz");
+  const __m128 vlo = _mm_set1_ps(lo), vext = _mm_set1_ps(extent);
+  const __m128 fbins = _mm_set1_ps(static_cast<float>(bins));
+  const __m128 last = _mm_set1_ps(static_cast<float>(bins - 1));
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    // Coordinate `axis` of box.lo of references i..i+3 (7 words apart);
+    // box.hi's is 3 words further.
+    const float* c = &refs[i].box.lo.x + axis;
+    alignas(16) int l[4], h[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(l),
+                    BinOf4(_mm_setr_ps(c[0], c[7], c[14], c[21]), vlo, fbins, vext, last));
+    _mm_store_si128(reinterpret_cast<__m128i*>(h),
+                    BinOf4(_mm_setr_ps(c[3], c[10], c[17], c[24]), vlo, fbins, vext, last));
+    ++st[l[0]];
+    ++st[l[1]];
+    ++st[l[2]];
+    ++st[l[3]];
+    ++en[h[0]];
+    ++en[h[1]];
+    ++en[h[2]];
+    ++en[h[3]];
+  }
+  for (; i < n; ++i) {
+    ++st[BinOf(refs[i].box.lo[axis], lo, extent, bins)];
+    ++en[BinOf(refs[i].box.hi[axis], lo, extent, bins)];
   }
   SweepCounts(s->starts.data(), s->ends.data(), n, box, axis, bins, config, s, best);
 }
@@ -131,8 +176,8 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
 
 void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
                       BinScratch* s) {
-  s->starts.assign(3 * static_cast<size_t>(bins), 0);
-  s->ends.assign(3 * static_cast<size_t>(bins), 0);
+  ZeroCounters(3 * static_cast<size_t>(bins), &s->starts);
+  ZeroCounters(3 * static_cast<size_t>(bins), &s->ends);
   const __m128 lo = _mm_setr_ps(box.lo.x, box.lo.y, box.lo.z, 0.0f);
   // A flat axis divides by 0 here; its lanes are clamped like any other and
   // its counts are never read (FindBinnedSahSplit skips the axis).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "cc/kdtree/parallel_build.h"
 #include "cc/kdtree/perfect_split.h"
 #include "cc/kdtree/pruning.h"
+#include "cc/kdtree/ref_pool.h"
 #include "cc/kdtree/sah_cost.h"
 #include "cc/kdtree/sweep_sah.h"
 #include "tbb/task_arena.h"
@@ -43,7 +45,8 @@ class Builder {
   // Builds a subtree (a fragment, parallel_build.h) over `refs` into tree_.
   void RunFragment(HugeVector<BuildRef> refs, const AABB& box, int depth) {
     tree_->refs.push_back(0);
-    pool_ = std::move(refs);
+    pool_.Reserve(2 * refs.size() + 1);
+    pool_.Append(refs.data(), refs.size());
     const size_t n = pool_.size();
     Recurse(0, n, box, depth);
   }
@@ -55,13 +58,14 @@ class Builder {
     tree_->nodes.reserve(3 * n + 1);
     tree_->refs.reserve(3 * n + 1);
     tree_->refs.push_back(0);  // the shared list of every empty leaf
-    pool_.reserve(3 * n + 1);
+    pool_.Reserve(3 * n + 1);
+    BuildRef* first = pool_.Reserved(n);
     AABB root;
     for (size_t i = 0; i < n; ++i) {
-      BuildRef r{soup_.Bounds(i), static_cast<uint32_t>(i)};
-      root.Extend(r.box);
-      pool_.push_back(r);
+      first[i] = BuildRef{soup_.Bounds(i), static_cast<uint32_t>(i)};
+      root.Extend(first[i].box);
     }
+    pool_.Resize(n);
     tree_->bounds = root;
     Recurse(0, n, root, 0);
     if (overflow_) {
@@ -81,7 +85,7 @@ class Builder {
       MakeLeaf(node, begin, end, box);
       return;
     }
-    const Split split = FindSplit(&pool_[begin], count, box);
+    const Split split = FindSplit(pool_.data() + begin, count, box);
     // Full SAH: split only when it is cheaper than a leaf (sah_cost.h).
     if (!split.found ||
         (config_.full_sah && !(static_cast<double>(split.cost) < LeafCost(count, config_)))) {
@@ -107,7 +111,7 @@ class Builder {
     tree_->nodes[node] =
         KdNode::Inner(split.axis, split.pos, static_cast<uint32_t>(right_node & KdNode::kMaxIndex));
     Recurse(right_begin, right_end, right_box, depth + 1);
-    pool_.resize(left_begin);
+    pool_.Resize(left_begin);
   }
 
   Split FindSplit(const BuildRef* refs, size_t count, const AABB& box) {
@@ -127,9 +131,9 @@ class Builder {
   void RecurseInParallel(uint32_t node, size_t left_begin, size_t right_begin, size_t right_end,
                          const AABB& left_box, const AABB& right_box, int depth,
                          const Split& split) {
-    HugeVector<BuildRef> left(pool_.begin() + left_begin, pool_.begin() + right_begin);
-    HugeVector<BuildRef> right(pool_.begin() + right_begin, pool_.begin() + right_end);
-    pool_.resize(left_begin);
+    HugeVector<BuildRef> left(pool_.data() + left_begin, pool_.data() + right_begin);
+    HugeVector<BuildRef> right(pool_.data() + right_begin, pool_.data() + right_end);
+    pool_.Resize(left_begin);
     KdTree left_tree, right_tree;
     Builder lb(soup_, config_, &left_tree, max_depth_, true);
     Builder rb(soup_, config_, &right_tree, max_depth_, true);
@@ -147,19 +151,83 @@ class Builder {
     if (!AppendFragment(right_tree, tree_)) overflow_ = true;
   }
 
-  // Appends the left references, then the right ones, at the end of the pool.
+  // Appends the left references, then the right ones, at the end of the pool,
+  // each side in the order of the node's references. Every reference yields
+  // at most one left and one right reference, so the pool and the right-side
+  // buffer are grown once up front and written through raw pointers.
   void Partition(size_t begin, size_t end, const Split& split, const AABB& left_box,
                  const AABB& right_box) {
+    const size_t count = end - begin;
+    BuildRef* const left_first = pool_.Reserved(2 * count);
+    right_.Resize(0);
+    BuildRef* const right_first = right_.Reserved(count);
+    const BuildRef* const src = pool_.data() + begin;  // stable: no growth below
+    Cursors out{left_first, right_first};
+    if (config_.use_clipping || config_.perfect_splits) {
+      PartitionClipping(src, count, split, left_box, right_box, &out);
+    } else {
+      PartitionBoxes(src, count, split, &out);
+    }
+    left_count_ = static_cast<size_t>(out.left - left_first);
+    const size_t right_count = static_cast<size_t>(out.right - right_first);
+    std::memcpy(out.left, right_first, right_count * sizeof(BuildRef));
+    pool_.Resize(pool_.size() + left_count_ + right_count);
+  }
+
+  struct Cursors {
+    BuildRef* left;   // next free slot of the left side
+    BuildRef* right;  // next free slot of the right side
+  };
+
+  // The first and last coordinates of a box as an array (lo.x lo.y lo.z
+  // hi.x hi.y hi.z), so an axis is an index instead of a select.
+  static const float* Coords(const AABB& b) {
+    static_assert(sizeof(AABB) == 6 * sizeof(float), "box is lo.xyz, hi.xyz");
+    return &b.lo.x;
+  }
+
+  // No clipping: a box goes left when it starts before the plane, right when
+  // it ends after it. Both slots are written and the cursors advance by the
+  // outcome (no branch on it); a box in the plane goes to both sides, or
+  // nowhere in the seed-compatible mode.
+  void PartitionBoxes(const BuildRef* src, size_t count, const Split& split, Cursors* out) {
     const int axis = split.axis;
     const float pos = split.pos;
-    right_.clear();
-    left_count_ = 0;
+    const bool seed = config_.seed_compatible;
+    BuildRef* left = out->left;
+    BuildRef* right = out->right;
+    for (size_t i = 0; i < count; ++i) {
+      const BuildRef& r = src[i];
+      const float* c = Coords(r.box);
+      bool to_left = c[axis] < pos, to_right = c[3 + axis] > pos;
+      if (!to_left && !to_right) {  // lo == hi == pos: lies in the plane
+        if (seed) {
+          ++counters().lost_planar;
+          continue;
+        }
+        to_left = to_right = true;
+      }
+      *left = r;
+      left += to_left;
+      *right = r;
+      right += to_right;
+    }
+    out->left = left;
+    out->right = right;
+  }
+
+  // Clipping or perfect splits: straddling triangles are cut (clipping.h,
+  // perfect_split.h); the other references partition as in PartitionBoxes.
+  void PartitionClipping(const BuildRef* src, size_t count, const Split& split,
+                         const AABB& left_box, const AABB& right_box, Cursors* out) {
+    const int axis = split.axis;
+    const float pos = split.pos;
     const bool conservative = !config_.seed_compatible;
-    for (size_t i = begin; i < end; ++i) {
-      const BuildRef r = pool_[i];  // a copy: push_back may reallocate
+    for (size_t i = 0; i < count; ++i) {
+      const BuildRef r = src[i];
       const float lo = r.box.lo[axis], hi = r.box.hi[axis];
       if (config_.perfect_splits && lo < pos && hi > pos) {
-        PerfectSplit(r, left_box, right_box);
+        PerfectSplit(r, left_box, right_box, out);
         continue;
       }
       if (config_.use_clipping && lo < pos && hi > pos) {
@@ -170,8 +238,8 @@ class Builder {
                                         conservative ? r.box : kEverywhere, conservative, &lb, &rb);
         if (c != ClipCase::kNotStraddling) {
           ++counters().clipped;
-          PushClipped(lb, r.tri, left_box, /*left=*/true);
-          PushClipped(rb, r.tri, right_box, /*left=*/false);
+          PushClipped(lb, r.tri, left_box, &out->left);
+          PushClipped(rb, r.tri, right_box, &out->right);
           continue;
         }
       }
@@ -183,34 +251,30 @@ class Builder {
         }
         to_left = to_right = true;
       }
-      if (to_left) {
-        pool_.push_back(r);
-        ++left_count_;
-      }
-      if (to_right) right_.push_back(r);
+      if (to_left) *out->left++ = r;
+      if (to_right) *out->right++ = r;
     }
-    pool_.insert(pool_.end(), right_.begin(), right_.end());
   }
 
   // Perfect splits (perfect_split.h): each part's box is the exact box of the
   // triangle inside the child (and inside the reference's box); a part that
   // is empty is dropped and counted as pruned_box. N_CL counts a reference
   // that became two.
-  void PerfectSplit(const BuildRef& r, const AABB& left_box, const AABB& right_box) {
+  void PerfectSplit(const BuildRef& r, const AABB& left_box, const AABB& right_box,
+                    Cursors* out) {
     const Vec3 &a = soup_.a(r.tri), &b = soup_.b(r.tri), &c = soup_.c(r.tri);
     AABB lb, rb;
     const bool in_left = ClipTriangleToBox(a, b, c, Intersect(r.box, left_box), &lb);
     const bool in_right = ClipTriangleToBox(a, b, c, Intersect(r.box, right_box), &rb);
     if (in_left && in_right) ++counters().clipped;
     if (!in_left && !in_right) ++counters().pruned_box;
-    if (in_left) {
-      pool_.push_back(BuildRef{lb, r.tri});
-      ++left_count_;
-    }
-    if (in_right) right_.push_back(BuildRef{rb, r.tri});
+    if (in_left) *out->left++ = BuildRef{lb, r.tri};
+    if (in_right) *out->right++ = BuildRef{rb, r.tri};
   }
 
-  void PushClipped(const AABB& clipped, uint32_t tri, const AABB& child, bool left) {
+  // One part of a clipped triangle into its side (*cursor), or dropped as
+  // pruned when pruning is on and the part misses its child.
+  void PushClipped(const AABB& clipped, uint32_t tri, const AABB& child, BuildRef** cursor) {
     AABB b = clipped;
     if (config_.use_pruning) {
       b = Intersect(clipped, child);
@@ -219,12 +283,7 @@ class Builder {
         return;
       }
     }
-    if (left) {
-      pool_.push_back(BuildRef{b, tri});
-      ++left_count_;
-    } else {
-      right_.push_back(BuildRef{b, tri});
-    }
+    *(*cursor)++ = BuildRef{b, tri};
   }
 
   void MakeLeaf(uint32_t node, size_t begin, size_t end, const AABB& box) {
@@ -262,8 +321,8 @@ class Builder {
   const TriangleSoup& soup_;
   const Config& config_;
   KdTree* tree_;
-  HugeVector<BuildRef> pool_;
-  HugeVector<BuildRef> right_;
+  RefPool pool_;
+  RefPool right_;  // the right side of a partition, before it joins the pool
   size_t left_count_ = 0;
   const int max_depth_;
   const bool parallel_;

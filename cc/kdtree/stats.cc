@@ -59,6 +59,27 @@ TreeStats ComputeStats(const KdTree& tree) {
   return s;
 }
 
+namespace {
+struct Fnv1a {
+  uint64_t h = 1469598103934665603ull;
+  void Add(const void* data, size_t bytes) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  }
+};
+}  // namespace
+
+uint64_t TreeFingerprint(const KdTree& tree) {
+  Fnv1a f;
+  f.Add(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
+  f.Add(tree.refs.data(), tree.refs.size() * sizeof(uint32_t));
+  f.Add(tree.leaf_soa.data(), tree.leaf_soa.size() * sizeof(float));
+  const uint64_t counters[] = {tree.counters.clipped, tree.counters.pruned_box,
+                               tree.counters.pruned_leaf, tree.counters.lost_planar};
+  f.Add(counters, sizeof(counters));
+  return f.h;
+}
+
 std::string StatsToJson(const TreeStats& s) {
   return absl::StrFormat(
       "{\"N_I\": %d, \"N_L\": %d, \"N_empty\": %d, \"N_TP\": %d, \"N_AP\": %.6g, "

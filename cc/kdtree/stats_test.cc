@@ -68,3 +68,30 @@ TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
 
 }  // namespace
 }  // namespace kdtree
+
+namespace kdtree {
+namespace {
+
+TEST(Stats, FingerprintNamesTheTree) {
+  TriangleSoup soup;
+  soup.Add({0, 0, 0}, {1, 0, 1}, {0, 1, 1});
+  soup.Add({3, 0, 0}, {4, 0, 1}, {3, 1, 1});
+  soup.Add({7, 0, 0}, {8, 0, 1}, {7, 1, 1});
+  Config c;
+  c.use_binning = false;
+  c.max_leaf_size = 1;
+  absl::StatusOr<KdTree> a = BuildKdTree(soup, c);
+  absl::StatusOr<KdTree> b = BuildKdTree(soup, c);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(TreeFingerprint(*a), TreeFingerprint(*b));  // same input, same tree
+  c.max_leaf_size = 8;  // one leaf: another tree
+  absl::StatusOr<KdTree> leaf = BuildKdTree(soup, c);
+  ASSERT_TRUE(leaf.ok());
+  EXPECT_NE(TreeFingerprint(*a), TreeFingerprint(*leaf));
+  KdTree moved = *a;
+  moved.nodes[0].split += 1.0f;  // one split position differs
+  EXPECT_NE(TreeFingerprint(*a), TreeFingerprint(moved));
+}
+
+}  // namespace
+}  // namespace kdtree
