@@ -83,6 +83,10 @@ bool TriangleOverlapsBoxFloat(const Vec3& a, const Vec3& b, const Vec3& c, const
 
 bool TriangleOverlapsBoxConservative(const Vec3& a, const Vec3& b, const Vec3& c,
                                      const AABB& box) {
+  // A vertex in the (closed) box is a point of the triangle in the box: it overlaps,
+  // exactly, and the separating-axis test (which never drops a triangle that
+  // touches the box) would say so too. Most leaf references take this exit.
+  if (box.Contains(a) || box.Contains(b) || box.Contains(c)) return true;
   return Test<double>(a, b, c, box, 1e-6);
 }
 

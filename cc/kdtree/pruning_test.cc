@@ -1,5 +1,7 @@
 #include "cc/kdtree/pruning.h"
 
+#include <random>
+
 #include "gtest/gtest.h"
 
 namespace kdtree {
@@ -38,6 +40,33 @@ TEST(Pruning, ConservativeKeepsAHairlineMiss) {
   const AABB box({1.000001f, 0, -1}, {2, 1, 1});
   EXPECT_FALSE(TriangleOverlapsBoxFloat(A, B, C, box));
   EXPECT_TRUE(TriangleOverlapsBoxConservative(A, B, C, box));
+}
+
+// On small integer coordinates every product and sum of the test is exact in
+// float, so the float test is the exact answer, and the conservative test
+// (its vertex-in-box exit or its separating-axis path) must give the same on
+// every pair: separations are at least 1/2, far beyond its 1e-6 growth.
+TEST(Pruning, ConservativeEqualsExactOnIntegerCoordinates) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(-8, 8);
+  const auto point = [&] {
+    return Vec3(static_cast<float>(coord(rng)), static_cast<float>(coord(rng)),
+                static_cast<float>(coord(rng)));
+  };
+  int vertex_inside = 0, overlapping = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 a = point(), b = point(), c = point();
+    AABB box;
+    box.Extend(point());
+    box.Extend(point());
+    const bool exact = TriangleOverlapsBoxFloat(a, b, c, box);
+    ASSERT_EQ(TriangleOverlapsBoxConservative(a, b, c, box), exact) << i;
+    vertex_inside += box.Contains(a) || box.Contains(b) || box.Contains(c);
+    overlapping += exact;
+  }
+  // Both paths of the conservative test were taken.
+  EXPECT_GT(vertex_inside, 1000);
+  EXPECT_GT(overlapping, vertex_inside + 1000);
 }
 
 }  // namespace
