@@ -15,11 +15,16 @@ namespace {
 // mem = (8 * 5 + 4 * (3 + 3 - 0) + 8 * 3) / 2^20 = 88 bytes.
 // SAH (K_T 15, K_I 20): areas root 34, [0,4] 18, [0,2] 10, [2,4] 10, [4,8] 18:
 //   15 (34 + 18) / 34 + 20 (10 + 10 + 18) / 34 = 1540 / 34.
-TEST(Stats, HandCountedTree) {
+TriangleSoup ThreeUnitTriangles() {
   TriangleSoup soup;
   soup.Add({0, 0, 0}, {1, 0, 1}, {0, 1, 1});
   soup.Add({3, 0, 0}, {4, 0, 1}, {3, 1, 1});
   soup.Add({7, 0, 0}, {8, 0, 1}, {7, 1, 1});
+  return soup;
+}
+
+TEST(Stats, HandCountedTree) {
+  const TriangleSoup soup = ThreeUnitTriangles();
   Config c = *Preset("median-16-2");
   c.max_leaf_size = 1;
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, c);
@@ -66,17 +71,8 @@ TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
   EXPECT_EQ(s.max_depth, 3);
 }
 
-}  // namespace
-}  // namespace kdtree
-
-namespace kdtree {
-namespace {
-
 TEST(Stats, FingerprintNamesTheTree) {
-  TriangleSoup soup;
-  soup.Add({0, 0, 0}, {1, 0, 1}, {0, 1, 1});
-  soup.Add({3, 0, 0}, {4, 0, 1}, {3, 1, 1});
-  soup.Add({7, 0, 0}, {8, 0, 1}, {7, 1, 1});
+  const TriangleSoup soup = ThreeUnitTriangles();
   Config c;
   c.use_binning = false;
   c.max_leaf_size = 1;
