@@ -431,10 +431,13 @@ def fetch_package(entry, dest, stats, tools):
                                entry["member"], raw)
             else:
                 extract_from_deb(deb, entry["path"], raw)
-            info = (parts.q3_bsp_to_ply if convert == "q3-bsp" else parts.assimp_to_ply)(
-                tools, raw, dest, SceneError)
+            if convert == "q3-bsp":
+                info = parts.q3_bsp_to_ply(tools, raw, dest, SceneError)
+            else:
+                info = parts.assimp_to_ply(tools, raw, dest, SceneError, entry.get("skip_nodes"))
             log(f"  {convert}: {info.get('triangles', '?')} triangles written"
-                + (f", {info['dropped']} malformed pieces dropped" if info.get("dropped") else ""))
+                + (f", {info['dropped']} malformed pieces dropped" if info.get("dropped") else "")
+                + (f", {info['skipped_nodes']} nodes skipped" if info.get("skipped_nodes") else ""))
         finally:
             raw.unlink(missing_ok=True)
         return

@@ -28,7 +28,7 @@ GENERATOR_KINDS = {"hairball", "voxel", "teapots", "city", "forest", "subdivide"
                    "courtyard"}
 FIELDS = {
     "name", "report_scene", "report_name", "role", "kind", "package", "npm_version", "path",
-    "member", "url", "convert", "generator", "format", "licence", "source",
+    "member", "url", "convert", "skip_nodes", "generator", "format", "licence", "source",
     "expected_triangles", "bounds", "up_axis", "framing", "profiles", "optional", "camera",
     "light", "notes",
 }
@@ -70,6 +70,10 @@ class ManifestTest(unittest.TestCase):
                 self.assertTrue(s["source"] and isinstance(s["source"], str))
                 et = s["expected_triangles"]
                 self.assertTrue(isinstance(et, int) and et > 0, et)
+                skip = s["skip_nodes"]
+                if skip is not None:  # node names, for the assimp-ply conversion only
+                    self.assertEqual(s["convert"], "assimp-ply")
+                    self.assertTrue(skip and all(isinstance(n, str) and n for n in skip), skip)
 
     def test_names_unique(self):
         names = [s["name"] for s in self.scenes]

@@ -8,7 +8,8 @@ in a reader cannot take the fetcher down:
               returns degenerate triangles for these maps.
   assimp-ply  the file (or `member`) goes through assimp in
               //cc/scenes:mesh_info --ply_out: flattened, triangulated, as PLY
-              (e.g. the TORCS .acc variant of AC3D, which only assimp reads).
+              (e.g. the TORCS .acc variant of AC3D, which only assimp reads);
+              the entry's `skip_nodes` names nodes to leave out.
 
 Generator parts (`generator.parts`, for the plant and courtyard generators):
 a list of {"role", "height", and either "scene" (another manifest scene) or
@@ -47,10 +48,13 @@ def run_child(cmd, what, error):
     return json.loads(lines[-1]) if lines and lines[-1].startswith("{") else {}
 
 
-def assimp_to_ply(tools, src, dest, error):
-    """Any file assimp reads -> flattened binary PLY (mesh_info --ply_out)."""
-    return run_child([str(tools.ensure() / "mesh_info"), str(src), f"--ply_out={dest}"],
-                     f"mesh_info --ply_out {Path(src).name}", error)
+def assimp_to_ply(tools, src, dest, error, skip_nodes=None):
+    """Any file assimp reads -> flattened binary PLY (mesh_info --ply_out); nodes
+    named in `skip_nodes` (helper geometry) are left out with their subtrees."""
+    cmd = [str(tools.ensure() / "mesh_info"), str(src), f"--ply_out={dest}"]
+    if skip_nodes:
+        cmd.append("--skip_nodes=" + ",".join(skip_nodes))
+    return run_child(cmd, f"mesh_info --ply_out {Path(src).name}", error)
 
 
 def q3_bsp_to_ply(tools, bsp, dest, error):

@@ -4,7 +4,11 @@
 //   {"triangles": flattened triangles, "triangles_unique": sum over meshes,
 //    "lines": .., "points": .., "meshes": .., "instances": ..,
 //    "dropped": faces/meshes skipped because the reader left them malformed,
+//    "skipped_nodes": nodes left out by --skip_nodes (with their subtrees),
 //    "bounds": [[lo], [hi]]}   (bounds of the flattened triangles)
+// --skip_nodes=A,B leaves out every node named A or B and its subtree: helper
+// geometry a scene file carries but never draws (FlightGear's Cessna has two
+// 200 m light cones around an 8 m aircraft).
 // With --ply_out=PATH it also writes the flattened triangles as binary PLY
 // (cc/scenes/ply.h), the form in which fetch.py keeps scenes whose reader is
 // fragile (Quake 3 maps in a .pk3; the TORCS .acc variant of AC3D): the
@@ -19,6 +23,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +36,8 @@
 #include "cc/scenes/ply.h"
 
 ABSL_FLAG(std::string, ply_out, "", "also write the flattened triangles to this binary PLY");
+ABSL_FLAG(std::vector<std::string>, skip_nodes, {},
+          "comma-separated node names left out with their subtrees (helper geometry)");
 
 namespace {
 
@@ -39,6 +46,8 @@ using kdtree::scenes::Mesh;
 
 struct Totals {
   unsigned long long triangles = 0, lines = 0, points = 0, instances = 0, dropped = 0;
+  unsigned long long skipped_nodes = 0;
+  std::set<std::string> skip;  // node names left out (--skip_nodes)
   double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                   std::numeric_limits<double>::infinity()};
   double hi[3] = {-std::numeric_limits<double>::infinity(),
@@ -63,6 +72,10 @@ void Walk(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, i
           Totals& t, Mesh* out) {
   if (depth > 1000) {  // a cyclic or absurd node graph
     ++t.dropped;
+    return;
+  }
+  if (!t.skip.empty() && t.skip.count(node.mName.C_Str()) > 0) {
+    ++t.skipped_nodes;
     return;
   }
   const aiMatrix4x4 transform = parent * node.mTransformation;
@@ -121,7 +134,7 @@ void Walk(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, i
 int main(int argc, char** argv) {
   const std::vector<char*> args = absl::ParseCommandLine(argc, argv);
   if (args.size() != 2) {
-    std::fprintf(stderr, "usage: mesh_info FILE [--ply_out=OUT.ply]\n");
+    std::fprintf(stderr, "usage: mesh_info FILE [--ply_out=OUT.ply] [--skip_nodes=A,B]\n");
     return 2;
   }
   const char* path = args[1];
@@ -135,6 +148,9 @@ int main(int argc, char** argv) {
   const std::string ply_out = absl::GetFlag(FLAGS_ply_out);
   Mesh flattened;
   Totals t;
+  for (const std::string& name : absl::GetFlag(FLAGS_skip_nodes)) {
+    if (!name.empty()) t.skip.insert(name);
+  }
   Walk(*scene, *scene->mRootNode, aiMatrix4x4(), 0, t, ply_out.empty() ? nullptr : &flattened);
   unsigned long long unique = 0;
   for (unsigned m = 0; scene->mMeshes != nullptr && m < scene->mNumMeshes; ++m) {
@@ -153,9 +169,10 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "{\"triangles\": %llu, \"triangles_unique\": %llu, \"lines\": %llu, \"points\": %llu, "
-      "\"meshes\": %u, \"instances\": %llu, \"dropped\": %llu, \"bounds\": [[%.9g, %.9g, %.9g], "
-      "[%.9g, %.9g, %.9g]]}\n",
-      t.triangles, unique, t.lines, t.points, scene->mNumMeshes, t.instances, t.dropped, t.lo[0],
+      "\"meshes\": %u, \"instances\": %llu, \"dropped\": %llu, \"skipped_nodes\": %llu, "
+      "\"bounds\": [[%.9g, %.9g, %.9g], [%.9g, %.9g, %.9g]]}\n",
+      t.triangles, unique, t.lines, t.points, scene->mNumMeshes, t.instances, t.dropped,
+      t.skipped_nodes, t.lo[0],
       t.lo[1], t.lo[2], t.hi[0], t.hi[1], t.hi[2]);
   return t.triangles > 0 ? 0 : 1;
 }
