@@ -22,7 +22,8 @@ the simple loaders, for .ply/.obj/.off) can read. Sources, by manifest `kind`:
              `generator.parts`: packaged models instanced by the plant and
              courtyard generators, converted once (data/parts.py).
   convert    q3-bsp (a Quake 3 map in a .pk3, our reader) and assimp-ply (any
-             assimp format, flattened to PLY), child processes (data/parts.py).
+             assimp format, flattened to PLY, leaving out the nodes named in
+             `skip_nodes`), child processes (data/parts.py).
   url        The report's original file from McGuire's archive, only when the
              network allows; otherwise skipped with a message (`optional`).
 Every obtained file is checked with //cc/scenes:mesh_info (assimp, flattened
