@@ -19,11 +19,30 @@ _KIND_LABELS = {
 }
 
 
+def generator_label(gen):
+    """A generator entry in a few words: its kind, seed, input scene and how
+    many packaged parts it places ('plant, seed 14, 7 parts'); the manifest
+    keeps the rest (the parts' packages and paths would fill a page)."""
+    if not isinstance(gen, dict):
+        return str(gen)
+    words = [str(gen.get("kind") or "?")]
+    if gen.get("seed") is not None:
+        words.append("seed %s" % gen["seed"])
+    if gen.get("input"):
+        words.append("from %s" % gen["input"])
+    parts = gen.get("parts") or []
+    if parts:
+        words.append("%d part%s" % (len(parts), "" if len(parts) == 1 else "s"))
+    return ", ".join(words)
+
+
 def source_label(scene):
-    """'Debian \\texttt{pkg}', 'npm \\texttt{pkg}', 'generator \\texttt{x}'."""
+    """'Debian \\texttt{pkg}', 'npm \\texttt{pkg}', 'generator \\texttt{kind, seed S}'."""
     kind = scene.get("kind") or ""
     label = latex.escape(_KIND_LABELS.get(kind, kind)) or latex.DASH
     detail = scene.get("package") or scene.get("generator")
+    if isinstance(detail, dict):
+        detail = generator_label(detail)
     if detail and kind != "url":
         label += " \\texttt{%s}" % latex.escape(detail)
     return label

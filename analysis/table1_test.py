@@ -28,6 +28,24 @@ class Table1Test(unittest.TestCase):
         body = text.split("\\midrule\n", 1)[1].split("\\bottomrule", 1)[0]
         return [line for line in body.splitlines() if line.strip()]
 
+    def test_generator_source_is_short(self):
+        # The full profile's power plant places packaged parts; the table
+        # names how many, not their paths (which made Table 1 unreadable).
+        parts = [{"role": "tower", "height": 145.1, "package": "flightgear-data-base",
+                  "path": "usr/share/games/flightgear/Scenery/Models/x%d.ac" % i}
+                 for i in range(7)]
+        plant = {"kind": "generator",
+                 "generator": {"kind": "plant", "triangles": 12759246, "seed": 14,
+                               "parts": parts}}
+        self.assertEqual(table1.source_label(plant),
+                         "generator \\texttt{plant, seed 14, 7 parts}")
+        teapots = {"kind": "generator",
+                   "generator": {"kind": "teapots", "seed": 10, "input": "teapot"}}
+        self.assertEqual(table1.source_label(teapots),
+                         "generator \\texttt{teapots, seed 10, from teapot}")
+        self.assertEqual(table1.source_label({"kind": "package", "package": "torcs-data"}),
+                         "Debian \\texttt{torcs-data}")
+
     def test_one_row_per_obtained_scene_in_manifest_order(self):
         text, _ = self.generate()
         rows = self.body_lines(text)
