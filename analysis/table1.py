@@ -36,6 +36,13 @@ def generator_label(gen):
     return ", ".join(words)
 
 
+def licence_label(licence):
+    """The licence up to its first parenthesis ('CC0-1.0 (libcgal-demo's ...
+    links to ...)' -> 'CC0-1.0'); the parenthesis says where it is stated, and
+    the manifest keeps it (in the table it made the rows pages tall)."""
+    return (licence or "").split(" (", 1)[0].strip()
+
+
 def source_label(scene):
     """'Debian \\texttt{pkg}', 'npm \\texttt{pkg}', 'generator \\texttt{kind, seed S}'."""
     kind = scene.get("kind") or ""
@@ -123,7 +130,7 @@ def render(rows, seed):
             latex.fmt_int(row["expected"]),
             check,
             source_label(scene),
-            latex.escape(scene.get("licence")) or latex.DASH,
+            latex.escape(licence_label(scene.get("licence"))) or latex.DASH,
         ])
     if not body:
         return _render_empty()
@@ -135,7 +142,8 @@ def render(rows, seed):
         "\\emph{Triangles} is the count as loaded by \\texttt{scene\\_info} "
         "(after dropping degenerate and non-finite triangles); "
         "\\emph{Expected} comes from the manifest; \\emph{Check} is "
-        "\\checkmark{} when they agree, else the difference.")
+        "\\checkmark{} when they agree, else the difference. \\emph{Licence} "
+        "stops before its first parenthesis; the manifest says where it is stated.")
     return latex.booktabs(header, body, align=("rllrrrl"
                                  ">{\\raggedright\\arraybackslash}p{2.8cm}"),
                           caption=caption, label="tab:scenes",

@@ -46,6 +46,16 @@ class Table1Test(unittest.TestCase):
         self.assertEqual(table1.source_label({"kind": "package", "package": "torcs-data"}),
                          "Debian \\texttt{torcs-data}")
 
+    def test_licence_stops_before_its_parenthesis(self):
+        self.assertEqual(table1.licence_label(
+            "CC0-1.0 (libcgal-demo's /usr/share/doc/libcgal-demo links to debian/copyright)"),
+            "CC0-1.0")
+        self.assertEqual(table1.licence_label(
+            "no licence field in the npm package; Stanford terms (free for research use)"),
+            "no licence field in the npm package; Stanford terms")
+        self.assertEqual(table1.licence_label("Public Domain"), "Public Domain")
+        self.assertEqual(table1.licence_label(None), "")
+
     def test_one_row_per_obtained_scene_in_manifest_order(self):
         text, _ = self.generate()
         rows = self.body_lines(text)
