@@ -74,6 +74,11 @@ struct AABB {
   }
 };
 
+// The six bounds as one array: lo.x lo.y lo.z hi.x hi.y hi.z, so that an
+// axis is an index instead of a select (hot loops of the builders).
+static_assert(sizeof(AABB) == 6 * sizeof(float), "box is lo.xyz, hi.xyz");
+inline const float* Coords(const AABB& b) { return &b.lo.x; }
+
 // Intersection of two boxes; not Valid() when they are disjoint.
 inline AABB Intersect(const AABB& a, const AABB& b) { return AABB(Max(a.lo, b.lo), Min(a.hi, b.hi)); }
 

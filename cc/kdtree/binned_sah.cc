@@ -142,7 +142,6 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
   uint32_t* st = s->starts.data();
   uint32_t* en = s->ends.data();
   static_assert(sizeof(BuildRef) == 7 * sizeof(float), "a reference is 7 words");
-  static_assert(sizeof(AABB) == 6 * sizeof(float), "box is lo.xyz, hi.xyz");
   const __m128 vlo = _mm_set1_ps(lo), vext = _mm_set1_ps(extent);
   const __m128 fbins = _mm_set1_ps(static_cast<float>(bins));
   const __m128 last = _mm_set1_ps(static_cast<float>(bins - 1));
@@ -150,7 +149,7 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
   for (; i + 4 <= n; i += 4) {
     // Coordinate `axis` of box.lo of references i..i+3 (7 words apart);
     // box.hi's is 3 words further.
-    const float* c = &refs[i].box.lo.x + axis;
+    const float* c = Coords(refs[i].box) + axis;
     alignas(16) int l[4], h[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(l),
                     BinOf4(_mm_setr_ps(c[0], c[7], c[14], c[21]), vlo, fbins, vext, last));
@@ -187,10 +186,9 @@ void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
   const __m128 last = _mm_set1_ps(static_cast<float>(bins - 1));
   uint32_t* st = s->starts.data();
   uint32_t* en = s->ends.data();
-  static_assert(sizeof(AABB) == 6 * sizeof(float), "box is lo.xyz, hi.xyz");
   for (size_t i = 0; i < n; ++i) {
     // lo.x lo.y lo.z hi.x and hi.x hi.y hi.z tri: the fourth lanes are unused.
-    const float* b = &refs[i].box.lo.x;
+    const float* b = Coords(refs[i].box);
     alignas(16) int l[4], h[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(l),
                     BinOf4(_mm_loadu_ps(b), lo, fbins, extent, last));

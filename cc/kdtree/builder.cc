@@ -179,13 +179,6 @@ class Builder {
     BuildRef* right;  // next free slot of the right side
   };
 
-  // The first and last coordinates of a box as an array (lo.x lo.y lo.z
-  // hi.x hi.y hi.z), so an axis is an index instead of a select.
-  static const float* Coords(const AABB& b) {
-    static_assert(sizeof(AABB) == 6 * sizeof(float), "box is lo.xyz, hi.xyz");
-    return &b.lo.x;
-  }
-
   // No clipping: a box goes left when it starts before the plane, right when
   // it ends after it. Both slots are written and the cursors advance by the
   // outcome (no branch on it); a box in the plane goes to both sides, or

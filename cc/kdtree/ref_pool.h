@@ -6,9 +6,9 @@
 // std::vector cannot append without constructing (resize() runs AABB's
 // default constructor on every new element; push_back() checks capacity per
 // element). RefPool keeps size and capacity itself: Reserve() grows the
-// storage (memcpy: BuildRef is trivially copyable), Append() returns the
+// storage (memcpy: BuildRef is trivially copyable), Reserved() returns the
 // first of `n` slots past the end for the caller to fill, Resize() shrinks or
-// commits slots already written. Storage comes from HugePageAllocator (huge
+// commits slots already written, Append() copies references in. Storage comes from HugePageAllocator (huge
 // pages when large, as the rest of the tree's arrays).
 #ifndef KDTREE_CC_KDTREE_REF_POOL_H_
 #define KDTREE_CC_KDTREE_REF_POOL_H_
@@ -68,11 +68,6 @@ class RefPool {
   void Resize(size_t n) {
     assert(n <= capacity_);
     size_ = n;
-  }
-
-  void PushBack(const BuildRef& r) {
-    if (size_ == capacity_) Reserve(size_ + 1);
-    data_[size_++] = r;
   }
 
   // Appends refs[0 .. n-1] (which must not point into this pool).

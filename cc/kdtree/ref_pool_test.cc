@@ -22,7 +22,10 @@ void ExpectRefs(RefPool& pool, size_t n) {
 TEST(RefPool, GrowingKeepsSizeAndContents) {
   RefPool pool;
   EXPECT_EQ(pool.size(), 0u);
-  for (uint32_t i = 0; i < 1000; ++i) pool.PushBack(Ref(i));
+  for (uint32_t i = 0; i < 1000; ++i) {
+    const BuildRef r = Ref(i);
+    pool.Append(&r, 1);  // grows one reference at a time
+  }
   ExpectRefs(pool, 1000);
   // Far beyond the capacity, and beyond a huge page (2 MiB / 28 bytes).
   pool.Reserve(200000);

@@ -47,7 +47,6 @@ using kdtree::scenes::Mesh;
 struct Totals {
   unsigned long long triangles = 0, lines = 0, points = 0, instances = 0, dropped = 0;
   unsigned long long skipped_nodes = 0;
-  std::set<std::string> skip;  // node names left out (--skip_nodes)
   double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                   std::numeric_limits<double>::infinity()};
   double hi[3] = {-std::numeric_limits<double>::infinity(),
@@ -68,13 +67,14 @@ bool FaceUsable(const aiMesh& mesh, const aiFace& face) {
   return true;
 }
 
+// `skip`: node names left out with their subtrees (--skip_nodes).
 void Walk(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, int depth,
-          Totals& t, Mesh* out) {
+          const std::set<std::string>& skip, Totals& t, Mesh* out) {
   if (depth > 1000) {  // a cyclic or absurd node graph
     ++t.dropped;
     return;
   }
-  if (!t.skip.empty() && t.skip.count(node.mName.C_Str()) > 0) {
+  if (!skip.empty() && skip.count(node.mName.C_Str()) > 0) {
     ++t.skipped_nodes;
     return;
   }
@@ -125,7 +125,7 @@ void Walk(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent, i
       ++t.dropped;
       continue;
     }
-    Walk(scene, *node.mChildren[c], transform, depth + 1, t, out);
+    Walk(scene, *node.mChildren[c], transform, depth + 1, skip, t, out);
   }
 }
 
@@ -148,10 +148,12 @@ int main(int argc, char** argv) {
   const std::string ply_out = absl::GetFlag(FLAGS_ply_out);
   Mesh flattened;
   Totals t;
+  std::set<std::string> skip;
   for (const std::string& name : absl::GetFlag(FLAGS_skip_nodes)) {
-    if (!name.empty()) t.skip.insert(name);
+    if (!name.empty()) skip.insert(name);
   }
-  Walk(*scene, *scene->mRootNode, aiMatrix4x4(), 0, t, ply_out.empty() ? nullptr : &flattened);
+  Walk(*scene, *scene->mRootNode, aiMatrix4x4(), 0, skip, t,
+       ply_out.empty() ? nullptr : &flattened);
   unsigned long long unique = 0;
   for (unsigned m = 0; scene->mMeshes != nullptr && m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
