@@ -131,8 +131,8 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
   if (!tree.ok()) return tree.status();
   KdTree index_tree = *tree;
-  kdtree::HugeVector<float>().swap(index_tree.leaf_soa);
-  kdtree::HugeVector<kdtree::KdNode>().swap(index_tree.leaf_nodes);
+  kdtree::HugeBuffer<float>().swap(index_tree.leaf_soa);
+  kdtree::HugeBuffer<kdtree::KdNode>().swap(index_tree.leaf_nodes);
   TraversalOptions mb;
   mb.mailbox = true;
   const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cassert>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -36,29 +38,45 @@ int EffectiveMaxDepth(const Config& config, size_t n) {
   return std::min(60, static_cast<int>(d));
 }
 
+// Capacity reserved up front for the nodes, the leaf lists and the build
+// references, in multiples of the triangle count. Large arrays come from mmap
+// (cc/base/huge_pages.h), which backs only the pages written, so a generous
+// reservation costs address space, not memory; a short one costs a copy of the
+// whole array into fresh pages each time it grows (the report's trees hold 5
+// to 8 references per triangle: N_TP, peak_build_refs).
+constexpr size_t kReserveFactor = 8;
+
 class Builder {
  public:
-  Builder(const TriangleSoup& soup, const Config& config, KdTree* tree, int max_depth,
-          bool parallel)
-      : soup_(soup), config_(config), tree_(tree), max_depth_(max_depth), parallel_(parallel) {}
+  // parallel_depth: nodes above it spawn their children as tasks
+  // (parallel_build.h); 0 = serial.
+  Builder(const TriangleSoup& soup, const Config& config, Fragment* fragment, int max_depth,
+          int parallel_depth)
+      : soup_(soup),
+        config_(config),
+        fragment_(fragment),
+        tree_(&fragment->tree),
+        max_depth_(max_depth),
+        parallel_depth_(parallel_depth) {}
 
   // Builds a subtree (a fragment, parallel_build.h) over `refs` into tree_.
-  void RunFragment(HugeVector<BuildRef> refs, const AABB& box, int depth) {
+  // Its root reads `refs` in place (the parent's pool, unchanged meanwhile).
+  void RunFragment(const BuildRef* refs, size_t n, const AABB& box, int depth) {
+    tree_->nodes.reserve(kReserveFactor * n + 1);
+    tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);
-    pool_.Reserve(2 * refs.size() + 1);
-    pool_.Append(refs.data(), refs.size());
-    const size_t n = pool_.size();
-    Recurse(0, n, box, depth);
+    pool_.Reserve(kReserveFactor * n + 1);
+    Recurse(0, n, box, depth, refs);
   }
 
   bool overflow() const { return overflow_; }
 
   absl::Status Run() {
     const size_t n = soup_.size();
-    tree_->nodes.reserve(3 * n + 1);
-    tree_->refs.reserve(3 * n + 1);
+    tree_->nodes.reserve(kReserveFactor * n + 1);
+    tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);  // the shared list of every empty leaf
-    pool_.Reserve(3 * n + 1);
+    pool_.Reserve(kReserveFactor * n + 1);
     BuildRef* first = pool_.Reserved(n);
     AABB root;
     for (size_t i = 0; i < n; ++i) {
@@ -77,30 +95,34 @@ class Builder {
   }
 
  private:
-  void Recurse(size_t begin, size_t end, const AABB& box, int depth) {
+  // The node over pool_[begin, end), or over external[0, end - begin) when
+  // given (a fragment's root).
+  void Recurse(size_t begin, size_t end, const AABB& box, int depth,
+               const BuildRef* external = nullptr) {
     const uint32_t node = static_cast<uint32_t>(tree_->nodes.size());
     tree_->nodes.push_back(KdNode::Leaf(0));
     const size_t count = end - begin;
     if (count <= static_cast<size_t>(config_.max_leaf_size) || depth >= max_depth_) {
-      MakeLeaf(node, begin, end, box);
+      MakeLeaf(node, external != nullptr ? external : pool_.data() + begin, count, box);
       return;
     }
-    const Split split = FindSplit(pool_.data() + begin, count, box);
+    const Split split =
+        FindSplit(external != nullptr ? external : pool_.data() + begin, count, box);
     // Full SAH: split only when it is cheaper than a leaf (sah_cost.h).
     if (!split.found ||
         (config_.full_sah && !(static_cast<double>(split.cost) < LeafCost(count, config_)))) {
-      MakeLeaf(node, begin, end, box);
+      MakeLeaf(node, external != nullptr ? external : pool_.data() + begin, count, box);
       return;
     }
     const AABB left_box = box.LeftOf(split.axis, split.pos);
     const AABB right_box = box.RightOf(split.axis, split.pos);
     const size_t left_begin = pool_.size();
-    Partition(begin, end, split, left_box, right_box);
+    Partition(begin, end, external, split, left_box, right_box);
     const size_t right_begin = left_begin + left_count_;
     const size_t right_end = pool_.size();
     if (pool_.size() > counters().peak_build_refs) counters().peak_build_refs = pool_.size();
 
-    if (parallel_ && count >= kParallelMinRefs && depth < kParallelMaxDepth) {
+    if (count >= kParallelMinRefs && depth < parallel_depth_) {
       RecurseInParallel(node, left_begin, right_begin, right_end, left_box, right_box, depth,
                         split);
       return;
@@ -127,41 +149,44 @@ class Builder {
     return FindBinnedSahSplit(refs, count, box, config_, &scratch_);
   }
 
-  // The two children as two fragments built at once (parallel_build.h).
+  // The two children as two fragments built at once (parallel_build.h),
+  // under two placeholder nodes.
   void RecurseInParallel(uint32_t node, size_t left_begin, size_t right_begin, size_t right_end,
                          const AABB& left_box, const AABB& right_box, int depth,
                          const Split& split) {
-    HugeVector<BuildRef> left(pool_.data() + left_begin, pool_.data() + right_begin);
-    HugeVector<BuildRef> right(pool_.data() + right_begin, pool_.data() + right_end);
-    pool_.Resize(left_begin);
-    KdTree left_tree, right_tree;
-    Builder lb(soup_, config_, &left_tree, max_depth_, true);
-    Builder rb(soup_, config_, &right_tree, max_depth_, true);
+    assert(tree_->nodes.size() == size_t{node} + 1);
+    if (size_t{node} + 2 > KdNode::kMaxIndex) overflow_ = true;
+    tree_->nodes[node] = KdNode::Inner(split.axis, split.pos, (node + 2) & KdNode::kMaxIndex);
+    tree_->nodes.push_back(KdNode::Leaf(0));  // left placeholder
+    tree_->nodes.push_back(KdNode::Leaf(0));  // right placeholder
+    auto left = std::make_unique<Fragment>();
+    auto right = std::make_unique<Fragment>();
+    Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_);
+    Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_);
+    const BuildRef* refs = pool_.data();
     tbb::task_group group;
-    group.run([&] { lb.RunFragment(std::move(left), left_box, depth + 1); });
-    rb.RunFragment(std::move(right), right_box, depth + 1);
+    group.run(
+        [&] { lb.RunFragment(refs + left_begin, right_begin - left_begin, left_box, depth + 1); });
+    rb.RunFragment(refs + right_begin, right_end - right_begin, right_box, depth + 1);
     group.wait();
-    if (lb.overflow() || rb.overflow() || !AppendFragment(left_tree, tree_)) {
-      overflow_ = true;
-      return;
-    }
-    const size_t right_node = tree_->nodes.size();
-    tree_->nodes[node] =
-        KdNode::Inner(split.axis, split.pos, static_cast<uint32_t>(right_node & KdNode::kMaxIndex));
-    if (!AppendFragment(right_tree, tree_)) overflow_ = true;
+    pool_.Resize(left_begin);
+    if (lb.overflow() || rb.overflow()) overflow_ = true;
+    fragment_->children.emplace_back(node + 1, std::move(left));
+    fragment_->children.emplace_back(node + 2, std::move(right));
   }
 
   // Appends the left references, then the right ones, at the end of the pool,
   // each side in the order of the node's references. Every reference yields
   // at most one left and one right reference, so the pool and the right-side
   // buffer are grown once up front and written through raw pointers.
-  void Partition(size_t begin, size_t end, const Split& split, const AABB& left_box,
-                 const AABB& right_box) {
+  void Partition(size_t begin, size_t end, const BuildRef* external, const Split& split,
+                 const AABB& left_box, const AABB& right_box) {
     const size_t count = end - begin;
     BuildRef* const left_first = pool_.Reserved(2 * count);
     right_.Resize(0);
     BuildRef* const right_first = right_.Reserved(count);
-    const BuildRef* const src = pool_.data() + begin;  // stable: no growth below
+    // Stable: no growth below.
+    const BuildRef* const src = external != nullptr ? external : pool_.data() + begin;
     Cursors out{left_first, right_first};
     if (config_.use_clipping || config_.perfect_splits) {
       PartitionClipping(src, count, split, left_box, right_box, &out);
@@ -279,13 +304,13 @@ class Builder {
     *(*cursor)++ = BuildRef{b, tri};
   }
 
-  void MakeLeaf(uint32_t node, size_t begin, size_t end, const AABB& box) {
+  void MakeLeaf(uint32_t node, const BuildRef* leaf_refs, size_t n, const AABB& box) {
     HugeVector<uint32_t>& refs = tree_->refs;
     const size_t offset = refs.size();
     refs.push_back(0);
     uint32_t count = 0;
-    for (size_t i = begin; i < end; ++i) {
-      const uint32_t t = pool_[i].tri;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t t = leaf_refs[i].tri;
       if (config_.use_pruning && config_.exact_pruning) {
         const bool overlaps =
             config_.seed_compatible
@@ -313,12 +338,13 @@ class Builder {
 
   const TriangleSoup& soup_;
   const Config& config_;
+  Fragment* fragment_;
   KdTree* tree_;
   RefPool pool_;
   RefPool right_;  // the right side of a partition, before it joins the pool
   size_t left_count_ = 0;
   const int max_depth_;
-  const bool parallel_;
+  const int parallel_depth_;
   BinScratch scratch_;
   SweepScratch sweep_;
   bool overflow_ = false;
@@ -351,17 +377,33 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   const int threads = config.build_threads == 0
                           ? tbb::this_task_arena::max_concurrency()
                           : config.build_threads;
-  Builder builder(soup, config, &tree, EffectiveMaxDepth(config, soup.size()), threads > 1);
+  Fragment root;
+  Builder builder(soup, config, &root, EffectiveMaxDepth(config, soup.size()),
+                  threads > 1 ? ParallelDepth(threads) : 0);
   absl::Status status;
+  // The arena's threads build, then lay out the leaves (leaf_layout.h).
+  const auto build = [&] {
+    status = builder.Run();
+    if (!status.ok()) return;
+    tree.bounds = root.tree.bounds;
+    if (root.children.empty()) {
+      tree.nodes = std::move(root.tree.nodes);
+      tree.refs = std::move(root.tree.refs);
+      tree.counters = root.tree.counters;
+    } else if (!Stitch(root, &tree)) {
+      status = absl::ResourceExhaustedError("kd-tree exceeds 2^30 nodes or references");
+      return;
+    }
+    if (config.collapse) CollapseTree(config, &tree);
+    LayoutLeafTriangles(&tree, threads > 1);  // triangle data in leaf order, for traversal
+  };
   if (threads > 1) {
     tbb::task_arena arena(threads);
-    arena.execute([&] { status = builder.Run(); });
+    arena.execute(build);
   } else {
-    status = builder.Run();
+    build();
   }
   if (!status.ok()) return status;
-  if (config.collapse) CollapseTree(config, &tree);
-  LayoutLeafTriangles(&tree);  // triangle data in leaf order, for traversal
   tree.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

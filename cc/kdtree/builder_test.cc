@@ -121,21 +121,37 @@ TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
                                    "sah-hybrid", "sah-perfect"}) {
     Config c = *Preset(name);
     const KdTree serial = *BuildKdTree(soup, c);
-    c.build_threads = 2;
-    const KdTree parallel = *BuildKdTree(soup, c);
     ASSERT_GT(serial.nodes.size(), 1000u) << name;
-    ASSERT_EQ(serial.nodes.size(), parallel.nodes.size()) << name;
-    ASSERT_EQ(serial.refs.size(), parallel.refs.size()) << name;
-    EXPECT_EQ(std::memcmp(serial.nodes.data(), parallel.nodes.data(),
-                          serial.nodes.size() * sizeof(KdNode)),
-              0)
-        << name;
-    EXPECT_EQ(std::memcmp(serial.refs.data(), parallel.refs.data(),
-                          serial.refs.size() * sizeof(uint32_t)),
-              0)
-        << name;
-    EXPECT_EQ(serial.counters.clipped, parallel.counters.clipped) << name;
-    EXPECT_EQ(serial.counters.pruned(), parallel.counters.pruned()) << name;
+    // 2 threads: fragments down to depth 4; 8: down to depth 6, nested three
+    // levels deeper (parallel_build.h).
+    for (int threads : {2, 3, 8}) {
+      c.build_threads = threads;
+      const KdTree parallel = *BuildKdTree(soup, c);
+      ASSERT_EQ(serial.nodes.size(), parallel.nodes.size()) << name << threads;
+      ASSERT_EQ(serial.refs.size(), parallel.refs.size()) << name << threads;
+      EXPECT_EQ(std::memcmp(serial.nodes.data(), parallel.nodes.data(),
+                            serial.nodes.size() * sizeof(KdNode)),
+                0)
+          << name << threads;
+      EXPECT_EQ(std::memcmp(serial.refs.data(), parallel.refs.data(),
+                            serial.refs.size() * sizeof(uint32_t)),
+                0)
+          << name << threads;
+      // The leaf layout, filled in parallel too.
+      ASSERT_EQ(serial.leaf_nodes.size(), parallel.leaf_nodes.size()) << name << threads;
+      ASSERT_EQ(serial.leaf_soa.size(), parallel.leaf_soa.size()) << name << threads;
+      EXPECT_EQ(std::memcmp(serial.leaf_nodes.data(), parallel.leaf_nodes.data(),
+                            serial.leaf_nodes.size() * sizeof(KdNode)),
+                0)
+          << name << threads;
+      EXPECT_EQ(std::memcmp(serial.leaf_soa.data(), parallel.leaf_soa.data(),
+                            serial.leaf_soa.size() * sizeof(float)),
+                0)
+          << name << threads;
+      EXPECT_EQ(TreeFingerprint(serial), TreeFingerprint(parallel)) << name << threads;
+      EXPECT_EQ(serial.counters.clipped, parallel.counters.clipped) << name << threads;
+      EXPECT_EQ(serial.counters.pruned(), parallel.counters.pruned()) << name << threads;
+    }
   }
 }
 

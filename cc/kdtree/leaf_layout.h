@@ -45,8 +45,9 @@ inline constexpr uint32_t kEmptyLeaf = KdNode::kMaxIndex;  // leaf_nodes index
 
 // Fills tree->leaf_soa and tree->leaf_nodes from the nodes, refs and verts
 // (replacing any previous layout). A tree without verts, or with 2^30 - 1
-// packets or more, gets none.
-void LayoutLeafTriangles(KdTree* tree);
+// packets or more, gets none. `parallel`: chunks of nodes run as oneTBB tasks
+// (in the caller's task arena); the layout is the same either way.
+void LayoutLeafTriangles(KdTree* tree, bool parallel = false);
 
 // Whether `tree` has a complete layout (the traversal uses it then).
 inline bool HasLeafLayout(const KdTree& tree) {

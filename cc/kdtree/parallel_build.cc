@@ -4,31 +4,89 @@
 
 namespace kdtree {
 
-bool AppendFragment(const KdTree& fragment, KdTree* tree) {
-  const size_t node_base = tree->nodes.size();
-  const size_t ref_base = tree->refs.size() - 1;  // the fragment's refs[0] is dropped
-  if (node_base + fragment.nodes.size() > KdNode::kMaxIndex ||
-      ref_base + fragment.refs.size() > KdNode::kMaxIndex) {
-    return false;
-  }
-  for (const KdNode& n : fragment.nodes) {
-    if (n.is_leaf()) {
-      tree->nodes.push_back(
-          n.index() == 0 ? n : KdNode::Leaf(static_cast<uint32_t>(n.index() + ref_base)));
-    } else {
-      tree->nodes.push_back(
-          KdNode::Inner(n.axis(), n.split, static_cast<uint32_t>(n.index() + node_base)));
+int ParallelDepth(int threads) {
+  int log2 = 0;
+  while ((1 << log2) < threads) ++log2;
+  return log2 + 3;
+}
+
+namespace {
+
+class Stitcher {
+ public:
+  explicit Stitcher(KdTree* out) : out_(out) {}
+
+  // Emits node i of `f` and its subtree in depth-first order; `next_child`
+  // walks f.children, whose placeholders the walk meets in increasing order.
+  void Emit(const Fragment& f, uint32_t i, size_t* next_child) {
+    if (*next_child < f.children.size() && f.children[*next_child].first == i) {
+      const Fragment& child = *f.children[(*next_child)++].second;
+      size_t grandchild = 0;
+      Emit(child, 0, &grandchild);
+      return;
     }
+    const KdNode& n = f.tree.nodes[i];
+    if (n.is_leaf()) {
+      if (n.index() == 0) {
+        out_->nodes.push_back(n);  // the shared empty list
+        return;
+      }
+      const size_t offset = out_->refs.size();
+      const uint32_t* list = &f.tree.refs[n.index()];
+      out_->refs.insert(out_->refs.end(), list, list + 1 + list[0]);
+      if (offset > KdNode::kMaxIndex) overflow_ = true;
+      out_->nodes.push_back(KdNode::Leaf(static_cast<uint32_t>(offset & KdNode::kMaxIndex)));
+      return;
+    }
+    const size_t at = out_->nodes.size();
+    out_->nodes.push_back(n);
+    Emit(f, i + 1, next_child);
+    const size_t right = out_->nodes.size();
+    if (right > KdNode::kMaxIndex) overflow_ = true;
+    out_->nodes[at] =
+        KdNode::Inner(n.axis(), n.split, static_cast<uint32_t>(right & KdNode::kMaxIndex));
+    Emit(f, n.index(), next_child);
   }
-  tree->refs.insert(tree->refs.end(), fragment.refs.begin() + 1, fragment.refs.end());
-  BuildCounters& c = tree->counters;
-  const BuildCounters& f = fragment.counters;
-  c.clipped += f.clipped;
-  c.pruned_box += f.pruned_box;
-  c.pruned_leaf += f.pruned_leaf;
-  c.lost_planar += f.lost_planar;
-  c.peak_build_refs = std::max(c.peak_build_refs, f.peak_build_refs);
-  return true;
+
+  void AddCounters(const Fragment& f) {
+    BuildCounters& c = out_->counters;
+    const BuildCounters& g = f.tree.counters;
+    c.clipped += g.clipped;
+    c.pruned_box += g.pruned_box;
+    c.pruned_leaf += g.pruned_leaf;
+    c.lost_planar += g.lost_planar;
+    c.peak_build_refs = std::max(c.peak_build_refs, g.peak_build_refs);
+    nodes_ += f.tree.nodes.size();
+    refs_ += f.tree.refs.size();
+    for (const auto& child : f.children) AddCounters(*child.second);
+  }
+
+  size_t nodes() const { return nodes_; }
+  size_t refs() const { return refs_; }
+  bool overflow() const { return overflow_; }
+
+ private:
+  KdTree* out_;
+  // Capacity to reserve: at least the emitted sizes (placeholders and each
+  // fragment's refs[0] are counted too). Indices are checked as emitted.
+  size_t nodes_ = 0, refs_ = 0;
+  bool overflow_ = false;
+};
+
+}  // namespace
+
+bool Stitch(const Fragment& root, KdTree* out) {
+  out->counters = BuildCounters();
+  Stitcher s(out);
+  s.AddCounters(root);
+  HugeVector<KdNode>().swap(out->nodes);
+  HugeVector<uint32_t>().swap(out->refs);
+  out->nodes.reserve(s.nodes());
+  out->refs.reserve(s.refs());
+  out->refs.push_back(0);
+  size_t next_child = 0;
+  s.Emit(root, 0, &next_child);
+  return !s.overflow();
 }
 
 }  // namespace kdtree

@@ -65,8 +65,8 @@ struct KdTree {
   // vertices and indices in packets of 4 triangles (structure of arrays, 40
   // words per packet) in leaf_soa; leaf_nodes is `nodes` with each leaf
   // pointing at its first packet. Empty: traversal reads `verts` by index.
-  HugeVector<float> leaf_soa;
-  HugeVector<KdNode> leaf_nodes;
+  HugeBuffer<float> leaf_soa;
+  HugeBuffer<KdNode> leaf_nodes;
   BuildCounters counters;
   double build_seconds = 0;     // T_B: triangles in memory to traversable tree
 
