@@ -7,15 +7,14 @@
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/ray_setup.h"
 
 #include <immintrin.h>
 
 namespace kdtree {
 
 namespace {
-constexpr float kPad = 4e-7f;         // about 3.4 float ulps, >= 2 gamma(3) (Ize 2013)
-constexpr float kHitSlack = 64.0f * 5.9604645e-8f;  // 64 * 2^-24, see traversal.h
-constexpr float kSpatialTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24, see traversal.h
+using ray_setup::kPad;
 }  // namespace
 
 bool ClipRayToBox(const Ray& ray, const AABB& box, float* t0, float* t1) {
@@ -50,53 +49,6 @@ struct StackEntry {
   uint32_t node;
   float t_entry, t_exit;
 };
-
-// The ray's largest distance, in t, to the scene box along its dominant axis:
-// no triangle vertex is deeper, so it scales every triangle's t error.
-// (Inputs are finite here, so a plain comparison equals std::fmax, without
-// the libm call.)
-inline float Max(float a, float b) { return a > b ? a : b; }
-
-float DepthScale(const Ray& ray, const AABB& box) {
-  const float ax = std::fabs(ray.dir.x), ay = std::fabs(ray.dir.y), az = std::fabs(ray.dir.z);
-  const int k = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
-  const float o = ray.origin[k];
-  const float depth = Max(std::fabs(box.lo[k] - o), std::fabs(box.hi[k] - o));
-  return depth / std::fabs(ray.dir[k]);
-}
-
-// The largest coordinate difference between the ray origin and the box.
-float Reach(const Ray& ray, const AABB& box) {
-  float r = 0;
-  for (int k = 0; k < 3; ++k) {
-    r = Max(r, Max(std::fabs(box.lo[k] - ray.origin[k]), std::fabs(box.hi[k] - ray.origin[k])));
-  }
-  return r;
-}
-
-// ClipRayToBox with every slab widened by delta in space (tol[k] = delta /
-// |dir[k]| in t) on top of the relative padding.
-bool ClipPadded(const Ray& ray, const AABB& box, float delta, const float inv[3],
-                const float tol[3], float* t0, float* t1) {
-  float lo = ray.tmin, hi = ray.tmax;
-  for (int k = 0; k < 3; ++k) {
-    const float o = ray.origin[k];
-    if (ray.dir[k] == 0.0f) {
-      if (!(box.lo[k] - o <= delta && o - box.hi[k] <= delta)) return false;
-      continue;
-    }
-    float tn = (box.lo[k] - o) * inv[k], tf = (box.hi[k] - o) * inv[k];
-    if (tn > tf) std::swap(tn, tf);
-    tn -= std::fabs(tn) * kPad + tol[k];
-    tf += std::fabs(tf) * kPad + tol[k];
-    if (tn > lo) lo = tn;
-    if (tf < hi) hi = tf;
-    if (!(lo <= hi)) return false;
-  }
-  *t0 = lo;
-  *t1 = hi;
-  return true;
-}
 
 // True when the watertight test certainly rejects the triangle: its three
 // edge functions have definitely different signs. The very float expressions
@@ -152,23 +104,19 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
   Ray ray = input;
   if (!SanitizeRay(&ray) || tree.nodes.empty() || !tree.bounds.Valid()) return best;
   assert(kMode != IntersectionMode::kWatertight || tree.verts.size() == 3 * tree.tris.size());
-  const float org[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
-  const float inv[3] = {1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
-  // Spatial tolerance: a triangle test may accept a point up to a few ulps of
-  // the origin-to-scene distance outside the triangle; every plane is treated
-  // as that thick (in t: delta / |dir[axis]|, infinite for a parallel ray).
-  const float delta = kSpatialTol * Reach(ray, tree.bounds);
-  const float tol[3] = {delta * std::fabs(inv[0]), delta * std::fabs(inv[1]),
-                        delta * std::fabs(inv[2])};
-  float t_entry, t_exit;
-  if (!ClipPadded(ray, tree.bounds, delta, inv, tol, &t_entry, &t_exit)) return best;
+  // Reciprocal direction, tolerances, the padded root interval, the slack and
+  // the watertight ray (ray_setup.h; see the robustness notes in traversal.h).
+  RaySetup setup;
+  if (!SetUpRay(ray, tree.bounds, &setup)) return best;
+  const float* const org = setup.org;
+  const float* const inv = setup.inv;
+  const float* const tol = setup.tol;
+  const bool* const negative = setup.negative;
+  const float delta = setup.delta;
+  float t_entry = setup.t_entry, t_exit = setup.t_exit;
   best.t = ray.tmax;
-  const float slack = kHitSlack * DepthScale(ray, tree.bounds);
-  WatertightRay wray{};
-  if (kMode == IntersectionMode::kWatertight) wray = MakeWatertightRay(ray);
-  // Child order per axis: near = left + near_is_right ? (right - left) : 0.
-  const bool negative[3] = {std::signbit(ray.dir.x), std::signbit(ray.dir.y),
-                            std::signbit(ray.dir.z)};
+  const float slack = setup.slack;
+  const WatertightRay& wray = setup.wray;
   uint32_t mailbox[kMailboxSlots];
   if (kMailbox) {
     for (int i = 0; i < kMailboxSlots; ++i) mailbox[i] = kNoHit;

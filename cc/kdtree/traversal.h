@@ -47,6 +47,9 @@
 // mode are template parameters, so the fast path carries no counting code.
 //
 // Speed (none of it changes a result):
+//  - The per-ray set-up (reciprocals, tolerances, the padded root interval,
+//    the watertight ray) runs in SSE, bit-identical to the scalar code
+//    (cc/kdtree/ray_setup.h).
 //  - Leaves read their triangles' vertices in leaf order, in packets of 4
 //    (KdTree::leaf_soa, cc/kdtree/leaf_layout.h; the builder fills them) when
 //    the tree has them, else from KdTree::verts by index.

@@ -1,0 +1,99 @@
+#include "cc/kdtree/ray_setup.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+
+#include "cc/geometry/ray_check.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+uint32_t Bits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof(u));
+  return u;
+}
+
+// Every field the traversal reads, bit for bit.
+void ExpectSame(const RaySetup& a, const RaySetup& b, int ray) {
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(Bits(a.org[k]), Bits(b.org[k])) << ray;
+    EXPECT_EQ(Bits(a.inv[k]), Bits(b.inv[k])) << ray;
+    EXPECT_EQ(Bits(a.tol[k]), Bits(b.tol[k])) << ray;
+    EXPECT_EQ(a.negative[k], b.negative[k]) << ray;
+  }
+  EXPECT_EQ(Bits(a.delta), Bits(b.delta)) << ray;
+  EXPECT_EQ(Bits(a.t_entry), Bits(b.t_entry)) << ray;
+  EXPECT_EQ(Bits(a.t_exit), Bits(b.t_exit)) << ray;
+  EXPECT_EQ(Bits(a.slack), Bits(b.slack)) << ray;
+  const WatertightRay &u = a.wray, &v = b.wray;
+  EXPECT_EQ(u.kx, v.kx) << ray;
+  EXPECT_EQ(u.ky, v.ky) << ray;
+  EXPECT_EQ(u.kz, v.kz) << ray;
+  EXPECT_EQ(Bits(u.ox), Bits(v.ox)) << ray;
+  EXPECT_EQ(Bits(u.oy), Bits(v.oy)) << ray;
+  EXPECT_EQ(Bits(u.oz), Bits(v.oz)) << ray;
+  EXPECT_EQ(Bits(u.sx), Bits(v.sx)) << ray;
+  EXPECT_EQ(Bits(u.sy), Bits(v.sy)) << ray;
+  EXPECT_EQ(Bits(u.sz), Bits(v.sz)) << ray;
+}
+
+// A float of random sign and magnitude 2^-30 .. 2^30, sometimes an exact
+// small integer or zero (axis-aligned and tied components).
+float Wild(std::mt19937& rng) {
+  std::uniform_int_distribution<int> kind(0, 9);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  switch (kind(rng)) {
+    case 0:
+      return 0.0f;
+    case 1:
+      return -0.0f;
+    case 2:
+      return static_cast<float>(std::uniform_int_distribution<int>(-3, 3)(rng));
+    default:
+      return std::ldexp(unit(rng), exponent(rng));
+  }
+}
+
+TEST(RaySetup, SimdEqualsScalarBitForBit) {
+  std::mt19937 rng(20261201);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  int compared = 0, hits = 0, simd = 0;
+  for (int i = 0; i < 400000; ++i) {
+    AABB box;
+    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+    if (i % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    Ray ray;
+    // Origins inside, on and outside the box; directions of every scale.
+    ray.origin = i % 3 == 0 ? Vec3(unit(rng), unit(rng), unit(rng)) * 2.0f
+                            : Vec3(Wild(rng), Wild(rng), Wild(rng));
+    ray.dir = i % 5 == 0 ? Vec3(unit(rng), unit(rng), unit(rng))
+                         : Vec3(Wild(rng), Wild(rng), Wild(rng));
+    ray.tmin = i % 4 == 0 ? -1.0f : 0.0f;
+    ray.tmax = i % 6 == 0 ? 3.0f : INFINITY;
+    if (!SanitizeRay(&ray)) continue;
+    simd += ray.dir.x != 0 && ray.dir.y != 0 && ray.dir.z != 0;
+    RaySetup a, b;
+    const bool ha = SetUpRay(ray, box, &a);
+    const bool hb = SetUpRayScalar(ray, box, &b);
+    ASSERT_EQ(ha, hb) << i;
+    ++compared;
+    if (!ha) continue;
+    ++hits;
+    ExpectSame(a, b, i);
+    if (::testing::Test::HasFailure()) return;
+  }
+  // Both outcomes and both paths are exercised.
+  EXPECT_GT(compared, 300000);
+  EXPECT_GT(hits, 50000);
+  EXPECT_LT(hits, compared - 50000);
+  EXPECT_GT(simd, 200000);
+}
+
+}  // namespace
+}  // namespace kdtree
