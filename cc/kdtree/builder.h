@@ -20,9 +20,10 @@ namespace kdtree {
 //    in the plane (lo == hi == P) goes to both children by default; the
 //    seed-compatible mode sends it nowhere and counts it in lost_planar, as the
 //    report's numbers show its implementation did;
-//  - node and reference arrays are reserved up front (3x the triangle count,
-//    as in the report); build references live in one pool reused by every
-//    level, so the build does no per-node heap allocation.
+//  - node and reference arrays are reserved up front (8x the triangle count:
+//    address space, only the pages written are backed); build references
+//    live in one pool reused by every level, so the build does no per-node
+//    heap allocation.
 // Beyond the report (config.h): full-SAH cost termination and the depth cap
 // 8 + 1.3 log2 N; the sweep and hybrid split searches; perfect splits; leaf
 // pruning off (box-only); the collapse post-pass; and a parallel build

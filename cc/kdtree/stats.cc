@@ -1,5 +1,6 @@
 #include "cc/kdtree/stats.h"
 
+#include <cstring>
 #include <vector>
 
 #include "absl/strings/str_format.h"
@@ -62,9 +63,18 @@ TreeStats ComputeStats(const KdTree& tree) {
 namespace {
 struct Fnv1a {
   uint64_t h = 1469598103934665603ull;
+  // FNV-1a over 64-bit words (the tail byte by byte): one multiply per 8
+  // bytes, so that hashing a tree of hundreds of megabytes takes a fraction
+  // of its build instead of several times it.
   void Add(const void* data, size_t bytes) {
     const unsigned char* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
+    size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+      uint64_t w;
+      std::memcpy(&w, p + i, sizeof(w));
+      h = (h ^ w) * 1099511628211ull;
+    }
+    for (; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
   }
 };
 }  // namespace

@@ -48,7 +48,7 @@ TreeStats ComputeStats(const KdTree& tree);
 // One JSON object with every field of TreeStats plus the build counters.
 std::string StatsToJson(const TreeStats& s);
 
-// FNV-1a (64 bits) over the tree's bytes: nodes (split bits and index bits),
+// FNV-1a (64 bits, over 64-bit words) of the tree: nodes (split bits and index bits),
 // reference lists, leaf-order packets and build counters. Two builds have the
 // same fingerprint when they wrote the same tree; benchmarks use it to check
 // that a faster builder still writes the tree it wrote before.
