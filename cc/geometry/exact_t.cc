@@ -34,6 +34,19 @@ int FilteredTriple(const D3& u, const D3& v, const D3& w) {
   return 2;
 }
 
+// True when A . (B x C) is exactly zero because a column or a row of the
+// matrix is: the origin lies in an axis-aligned plane that holds the whole
+// triangle (a floor at y = 0 hit at a point computed on it exactly, which
+// spawn.h leaves unmoved), or on a vertex. (A difference of two floats is zero
+// in double exactly when they are equal.) The common hard case of shadow rays
+// from such floors: the double filter cannot decide a zero.
+bool TripleIsZero(const D3& A, const D3& B, const D3& C) {
+  const bool column = (A.x == 0 && B.x == 0 && C.x == 0) || (A.y == 0 && B.y == 0 && C.y == 0) ||
+                      (A.z == 0 && B.z == 0 && C.z == 0);
+  const auto zero = [](const D3& v) { return v.x == 0 && v.y == 0 && v.z == 0; };
+  return column || zero(A) || zero(B) || zero(C);
+}
+
 }  // namespace
 
 namespace exact_t_internal {
@@ -70,7 +83,9 @@ bool ExactPlaneHitBeyond(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3
     // certified by its error bound. (The differences of the second are of
     // floats, exact in double apart from extreme exponent ranges, which the
     // bound covers as rounding of the differences.)
-    const int snum = FilteredTriple(Sub(a, o), Sub(b, o), Sub(c, o));
+    const D3 A = Sub(a, o), B = Sub(b, o), C = Sub(c, o);
+    if (TripleIsZero(A, B, C)) return false;  // t = 0 exactly (or no hit): not beyond 0
+    const int snum = FilteredTriple(A, B, C);
     if (snum != 2) {
       const int sdet = FilteredTriple({d.x, d.y, d.z}, Sub(b, a), Sub(c, a));
       if (sdet != 2) return snum * sdet > 0;

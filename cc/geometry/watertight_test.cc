@@ -229,6 +229,33 @@ TEST(ExactT, FilterAgreesWithExpansions) {
   }
 }
 
+// Origins exactly in an axis-aligned plane holding the triangle, or on one of
+// its vertices: t = 0 exactly, decided without expansions, as they decide.
+TEST(ExactT, OriginInTheTrianglesAxisPlaneIsNotBeyondZero) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 20000; ++i) {
+    const float level = u(rng) * 100.0f;
+    const int k = i % 3;
+    auto on_plane = [&](Vec3 p) {
+      p[k] = level;
+      return p;
+    };
+    const Vec3 a = on_plane(Vec3(u(rng), u(rng), u(rng)) * 50.0f);
+    const Vec3 b = on_plane(Vec3(u(rng), u(rng), u(rng)) * 50.0f);
+    const Vec3 c = on_plane(Vec3(u(rng), u(rng), u(rng)) * 50.0f);
+    const Vec3 o = i % 4 == 0 ? b : on_plane(Vec3(u(rng), u(rng), u(rng)) * 50.0f);
+    const Vec3 d(u(rng), u(rng), u(rng));
+    ASSERT_FALSE(ExactPlaneHitBeyond(o, d, a, b, c, 0.0f)) << i;
+    ASSERT_FALSE(exact_t_internal::ExactExpansions(o, d, a, b, c, 0.0f)) << i;
+  }
+  // One ulp off the plane, toward it: beyond 0 (the shortcut does not apply).
+  const Vec3 a(0, 0, 1), b(1, 0, 1), c(0, 1, 1);
+  const Vec3 o(0.25f, 0.25f, std::nextafter(1.0f, 0.0f));
+  EXPECT_TRUE(ExactPlaneHitBeyond(o, Vec3(0, 0, 1), a, b, c, 0.0f));
+  EXPECT_FALSE(ExactPlaneHitBeyond(Vec3(0.25f, 0.25f, 1.0f), Vec3(0, 0, 1), a, b, c, 0.0f));
+}
+
 TEST(RayCheck, RejectsNanInfZeroAndFlushesDenormals) {
   const float nan = std::nanf(""), inf = INFINITY;
   Ray r{{0, 0, 0}, {1, 0, 0}};
