@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cc/kdtree/pruning.h"
+#include "cc/kdtree/sah_cost.h"
 #include "cc/kdtree/stats.h"
 #include "cc/kdtree/test_scenes.h"
 #include "gtest/gtest.h"
@@ -153,6 +154,24 @@ TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
       EXPECT_EQ(serial.counters.pruned(), parallel.counters.pruned()) << name << threads;
     }
   }
+}
+
+TEST(Builder, SahPacketCountsPacketsOfReferences) {
+  Config c = *Preset("sah-hybrid");
+  const AABB box(Vec3(0, 0, 0), Vec3(2, 1, 1));
+  Config p = c;
+  p.sah_packet = 4;
+  // 5 references cost 2 packets, 4 cost 1, 0 cost 0 (the empty bonus still
+  // sees the 0).
+  EXPECT_EQ(SplitCost(box, 0, 1.0f, 5, 4, p), SplitCost(box, 0, 1.0f, 2, 1, c));
+  EXPECT_EQ(SplitCost(box, 0, 1.0f, 0, 8, p), SplitCost(box, 0, 1.0f, 0, 2, c));
+  EXPECT_EQ(LeafCost(9, p), LeafCost(3, c));
+  // On a mesh: fuller leaves and a smaller tree than per-reference counts.
+  const TriangleSoup soup = testing::BumpySphere(5, 11);
+  const TreeStats one = ComputeStats(*BuildKdTree(soup, c));
+  const TreeStats four = ComputeStats(*BuildKdTree(soup, *Preset("sah-packet")));
+  EXPECT_LT(four.inner, one.inner);
+  EXPECT_GT(four.avg_leaf_refs, one.avg_leaf_refs);
 }
 
 TEST(Builder, FullSahTerminatesByCost) {

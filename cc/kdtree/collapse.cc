@@ -4,6 +4,8 @@
 #include <iterator>
 #include <vector>
 
+#include "cc/kdtree/sah_cost.h"
+
 namespace kdtree {
 namespace {
 
@@ -24,7 +26,7 @@ class Collapser {
     Info info;
     if (n.is_leaf()) {
       const uint32_t count = tree_.LeafCount(n);
-      info.cost = config_.intersection_cost * count * sa;
+      info.cost = config_.intersection_cost * Packets(count, config_) * sa;
       if (count <= kMaxCollapsedLeaf) {
         info.small = true;
         info.tris.assign(tree_.LeafBegin(n), tree_.LeafBegin(n) + count);
@@ -42,7 +44,8 @@ class Collapser {
     std::set_union(l.tris.begin(), l.tris.end(), r.tris.begin(), r.tris.end(),
                    std::back_inserter(u));
     if (u.size() > kMaxCollapsedLeaf) return info;
-    const double leaf_cost = config_.intersection_cost * static_cast<double>(u.size()) * sa;
+    const double leaf_cost =
+        config_.intersection_cost * Packets(static_cast<double>(u.size()), config_) * sa;
     if (leaf_cost <= info.cost) {
       collapse_[index] = 1;
       ++removed_;

@@ -35,6 +35,9 @@ absl::Status Config::Validate() const {
       empty_bonus > 1) {
     return absl::InvalidArgumentError("SAH constants: K_T >= 0, K_I > 0, 0 < bonus <= 1");
   }
+  if (sah_packet < 1 || sah_packet > 64) {
+    return absl::InvalidArgumentError(absl::StrCat("sahPacket must be in [1, 64], got ", sah_packet));
+  }
   if (build_threads < 0) {
     return absl::InvalidArgumentError(absl::StrCat("buildThreads must be >= 0, got ", build_threads));
   }
@@ -63,6 +66,7 @@ std::string Config::ToEnvironment() const {
     absl::StrAppend(&extra, "    exactPruning ", on(exact_pruning), "\n");
   }
   if (collapse != d.collapse) absl::StrAppend(&extra, "    collapse ", on(collapse), "\n");
+  if (sah_packet != d.sah_packet) absl::StrAppend(&extra, "    sahPacket ", sah_packet, "\n");
   if (build_threads != d.build_threads) {
     absl::StrAppend(&extra, "    buildThreads ", build_threads, "\n");
   }
@@ -86,7 +90,8 @@ bool Config::operator==(const Config& o) const {
          auto_depth == o.auto_depth && split_method == o.split_method &&
          hybrid_bins == o.hybrid_bins && hybrid_threshold == o.hybrid_threshold &&
          perfect_splits == o.perfect_splits && exact_pruning == o.exact_pruning &&
-         collapse == o.collapse && build_threads == o.build_threads;
+         collapse == o.collapse && sah_packet == o.sah_packet &&
+         build_threads == o.build_threads;
 }
 
 const std::vector<std::string>& PresetNames() {
@@ -153,6 +158,10 @@ absl::StatusOr<Config> Preset(const std::string& name) {
     }
     s.split_method = Config::SplitMethod::kHybrid;
     if (name == "sah-hybrid") return s;
+    if (name == "sah-packet") {
+      s.sah_packet = 4;
+      return s;
+    }
     if (name == "sah-perfect") {
       s.perfect_splits = true;
       s.collapse = true;
@@ -169,12 +178,13 @@ absl::StatusOr<Config> Preset(const std::string& name) {
                                           "median-16-2, median-24-2, median-24-8, ",
                                           "binning-8-driving, binning-8, binning-32, clipping, ",
                                           "pruning, clipping-pruning, pruning-seed, sah-binned-32, ",
-                                          "sah-sweep, sah-hybrid, sah-perfect"));
+                                          "sah-sweep, sah-hybrid, sah-perfect, sah-packet"));
 }
 
 const std::vector<std::string>& ExtraPresetNames() {
   static const auto* names =
-      new std::vector<std::string>{"sah-binned-32", "sah-sweep", "sah-hybrid", "sah-perfect"};
+      new std::vector<std::string>{"sah-binned-32", "sah-sweep", "sah-hybrid", "sah-perfect",
+                                   "sah-packet"};
   return *names;
 }
 

@@ -69,6 +69,13 @@ TEST(Config, ValidateRejectsOutOfRangeValues) {
   c = Config();
   c.max_leaf_size = -1;
   EXPECT_FALSE(c.Validate().ok());
+  c = Config();
+  c.sah_packet = 0;
+  EXPECT_FALSE(c.Validate().ok());
+  c.sah_packet = 65;
+  EXPECT_FALSE(c.Validate().ok());
+  c.sah_packet = 4;
+  EXPECT_TRUE(c.Validate().ok());
 }
 
 }  // namespace

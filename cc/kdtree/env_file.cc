@@ -156,6 +156,8 @@ class Parser {
         s = Bool(value, &c.exact_pruning);
       } else if (block == "KDTree" && key.text == "collapse") {
         s = Bool(value, &c.collapse);
+      } else if (block == "KDTree" && key.text == "sahPacket") {
+        s = Int(value, &c.sah_packet);
       } else if (block == "KDTree" && key.text == "buildThreads") {
         s = Int(value, &c.build_threads);
       } else if (block == "Binning" && (key.text == "useBinning" || key.text == "useBining")) {
