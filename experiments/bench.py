@@ -1,0 +1,154 @@
+#!/usr/bin/python3
+"""The speed benchmarks of issue 7: build throughput and parallel speed-up, render throughput against Embree.
+
+Runs the two optimised benchmark binaries over the fetched scenes
+(data/cache/scenes/index.json) and appends their JSON lines to OUT/build.jsonl
+and OUT/render.jsonl; then prints a Markdown summary of everything in OUT
+(also with --summary_only, to re-read earlier runs). Both binaries validate
+before they time: build_bench checks seeded rays against brute force and that
+every timed build writes the validated tree (its fingerprint);
+render_bench checks the kd-tree's rays against brute force and records
+Embree's disagreements.
+
+  experiments/bench.py                        # defaults below
+  experiments/bench.py --build_min_tris 1000000 --render_min_tris 50000
+
+Numbers: T_B is the median of --repeats builds, and also the fastest, since
+on a shared or virtual machine the slow runs carry other load; Mtri/s =
+triangles / T_B. Render: kd/Embree = Embree's T_R / the kd-tree's T_R, medians
+of interleaved rounds on the same rays (render_bench.cc).
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BIN = os.path.join(ROOT, "bazel-bin", "cc", "bench")
+BUILD_PRESETS = "binning-8-driving,binning-32,clipping-pruning,sah-hybrid"
+
+
+def scenes_from_index(index_path, min_tris, only=""):
+    with open(index_path) as f:
+        scenes = json.load(f)["scenes"]
+    names = [s for s in only.split(",") if s] or sorted(scenes)
+    return [(n, scenes[n]) for n in names
+            if n in scenes and scenes[n]["triangles"] >= min_tris]
+
+
+def run(cmd):
+    print("+", " ".join(cmd), file=sys.stderr, flush=True)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+
+
+def read(path):
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return [json.loads(line) for line in f if line.strip()]
+
+
+def build_summary(records):
+    """Per (scene, preset): Mtri/s at each thread count and the speed-up."""
+    rows = {}
+    for r in records:
+        key = (r["scene"], r["n_tri"], r["preset"])
+        rows.setdefault(key, {})[r["threads"]] = r
+    out = ["| scene | triangles | preset | 1 thread: T_B median (fastest), Mtri/s "
+           "| 2 threads: T_B median (fastest), Mtri/s | speed-up (medians) |",
+           "|---|---|---|---|---|---|"]
+    for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
+        cells = []
+        for t in (1, 2):
+            r = by_t.get(t)
+            cells.append("-" if r is None else "%.3f s (%.3f), %.2f (%.2f)" % (
+                r["T_B"], min(r["T_B_runs"]), n / r["T_B"] / 1e6,
+                n / min(r["T_B_runs"]) / 1e6))
+        speed = ("%.2fx" % (by_t[1]["T_B"] / by_t[2]["T_B"])
+                 if 1 in by_t and 2 in by_t else "-")
+        out.append("| %s | %s | %s | %s | %s | %s |" % (
+            scene, format(n, ","), preset, cells[0], cells[1], speed))
+    return "\n".join(out)
+
+
+def render_summary(records):
+    """Per (scene, preset): kd/Embree at 1 thread, the speed-up of 2 threads."""
+    rows = {}
+    for r in records:
+        rows.setdefault((r["scene"], r["n_tri"], r["preset"]), {})[r["threads"]] = r
+    out = ["| scene | triangles | preset | kd T_R, 1 thread | Embree T_R | kd/Embree "
+           "| kd 2-thread speed-up | Embree 2-thread speed-up | validation |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    ratios = []
+    for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
+        one, two = by_t.get(1), by_t.get(2)
+        if one is None:
+            continue
+        kd, emb = one["tracers"]["kd"], one["tracers"].get("embree")
+        ratio = emb["T_R_median"] / kd["T_R_median"] if emb else None
+        if ratio is not None:
+            ratios.append(ratio)
+
+        def speed(name):
+            if two is None or name not in two["tracers"]:
+                return "-"
+            return "%.2fx" % (one["tracers"][name]["T_R_median"] /
+                              two["tracers"][name]["T_R_median"])
+
+        v = one["validation"]
+        d = v.get("embree_disagreements") or {}
+        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %d/%d brute-force "
+                   "mismatches, %s Embree disagreements |" % (
+                       scene, format(n, ","), preset, kd["T_R_median"],
+                       "%.4f s" % emb["T_R_median"] if emb else "-",
+                       "%.2f" % ratio if ratio is not None else "-",
+                       speed("kd"), speed("embree"), v["brute_force_mismatches"],
+                       v["brute_force_checked"], d.get("total", "-")))
+    if ratios:
+        out.append("")
+        out.append("kd/Embree over %d rows: median %.2f, range %.2f to %.2f." % (
+            len(ratios), statistics.median(ratios), min(ratios), max(ratios)))
+    return "\n".join(out)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--index", default=os.path.join(ROOT, "data", "cache", "scenes",
+                                                   "index.json"))
+    p.add_argument("--cache_dir", default=os.path.join(ROOT, "data", "cache", "soups"))
+    p.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
+    p.add_argument("--scenes", default="", help="comma-separated subset")
+    p.add_argument("--build_min_tris", type=int, default=1000000)
+    p.add_argument("--build_presets", default=BUILD_PRESETS)
+    p.add_argument("--render_min_tris", type=int, default=50000)
+    p.add_argument("--render_preset", default="sah-hybrid")
+    p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--skip_build", action="store_true")
+    p.add_argument("--skip_render", action="store_true")
+    p.add_argument("--summary_only", action="store_true")
+    a = p.parse_args(argv)
+    os.makedirs(a.out, exist_ok=True)
+    build_out = os.path.join(a.out, "build.jsonl")
+    render_out = os.path.join(a.out, "render.jsonl")
+    if not a.summary_only:
+        if not a.skip_build:
+            for name, s in scenes_from_index(a.index, a.build_min_tris, a.scenes):
+                run([os.path.join(BIN, "build_bench"), "--mesh", os.path.join(ROOT, s["file"]),
+                     "--name", name, "--cache_dir", a.cache_dir, "--presets", a.build_presets,
+                     "--threads", "1,2", "--repeats", str(a.repeats), "--out", build_out])
+        if not a.skip_render:
+            for name, _ in scenes_from_index(a.index, a.render_min_tris, a.scenes):
+                run([os.path.join(BIN, "render_bench"), "--repo", ROOT, "--scenes", name,
+                     "--cache_dir", a.cache_dir, "--preset", a.render_preset,
+                     "--threads", "1,2", "--repeats", str(a.repeats), "--variants", "kd",
+                     "--out", render_out])
+    print("## Build (build_bench)\n")
+    print(build_summary(read(build_out)))
+    print("\n## Render (render_bench)\n")
+    print(render_summary(read(render_out)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,51 @@
+"""Tests of experiments/bench.py: scene selection and the summaries."""
+import json
+import os
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench  # noqa: E402
+
+
+def build_record(threads, runs, n=2000000):
+    return {"scene": "big", "n_tri": n, "preset": "binning-32", "threads": threads,
+            "T_B": sorted(runs)[len(runs) // 2], "T_B_runs": runs}
+
+
+class BenchTest(unittest.TestCase):
+    def test_scenes_from_index_filters_by_triangles_and_names(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "index.json")
+            with open(path, "w") as f:
+                json.dump({"scenes": {"a": {"triangles": 10, "file": "a.ply"},
+                                      "b": {"triangles": 2000000, "file": "b.ply"},
+                                      "c": {"triangles": 60000, "file": "c.ply"}}}, f)
+            self.assertEqual([n for n, _ in bench.scenes_from_index(path, 50000)], ["b", "c"])
+            self.assertEqual([n for n, _ in bench.scenes_from_index(path, 0, "c,a,zz")],
+                             ["c", "a"])
+
+    def test_build_summary_gives_throughput_and_speed_up(self):
+        text = bench.build_summary([build_record(1, [1.0, 0.8, 1.2]),
+                                    build_record(2, [0.5, 0.6, 0.4])])
+        row = text.splitlines()[2]
+        self.assertIn("1.000 s (0.800), 2.00 (2.50)", row)  # median, fastest; Mtri/s
+        self.assertIn("0.500 s (0.400), 4.00 (5.00)", row)
+        self.assertTrue(row.endswith("| 2.00x |"))
+
+    def test_render_summary_gives_ratio_to_embree(self):
+        def rec(threads, kd, embree):
+            return {"scene": "s", "n_tri": 100000, "preset": "sah-packet", "threads": threads,
+                    "tracers": {"kd": {"T_R_median": kd}, "embree": {"T_R_median": embree}},
+                    "validation": {"brute_force_mismatches": 0, "brute_force_checked": 301,
+                                   "embree_disagreements": {"total": 3}}}
+        text = bench.render_summary([rec(1, 0.2, 0.1), rec(2, 0.1, 0.05)])
+        row = text.splitlines()[2]
+        self.assertIn("| 0.50 | 2.00x | 2.00x |", row)
+        self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
+        self.assertIn("median 0.50", text)
+
+
+if __name__ == "__main__":
+    unittest.main()
