@@ -12,6 +12,7 @@ Embree's disagreements.
 
   experiments/bench.py                        # defaults below
   experiments/bench.py --build_min_tris 1000000 --render_min_tris 50000
+  experiments/bench.py --repo ../other-checkout   # scenes fetched there
 
 Numbers: T_B is the median of --repeats builds, and also the fastest, since
 on a shared or virtual machine the slow runs carry other load; Mtri/s =
@@ -26,8 +27,10 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BIN = os.path.join(ROOT, "bazel-bin", "cc", "bench")
-BUILD_PRESETS = "binning-8-driving,binning-32,clipping-pruning,sah-hybrid"
+# The --config=opt binaries (bazel-bin follows the last build, which may be
+# a test build).
+BIN = os.path.join(ROOT, "bazel-out", "k8-opt", "bin", "cc", "bench")
+BUILD_PRESETS = "binning-8-driving,binning-32,clipping-pruning"
 
 
 def scenes_from_index(index_path, min_tris, only=""):
@@ -79,17 +82,20 @@ def render_summary(records):
     for r in records:
         rows.setdefault((r["scene"], r["n_tri"], r["preset"]), {})[r["threads"]] = r
     out = ["| scene | triangles | preset | kd T_R, 1 thread | Embree T_R | kd/Embree "
-           "| kd 2-thread speed-up | Embree 2-thread speed-up | validation |",
-           "|---|---|---|---|---|---|---|---|---|"]
-    ratios = []
+           "| with mailbox | kd 2-thread speed-up | Embree 2-thread speed-up | validation |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    ratios, best = [], []
     for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         one, two = by_t.get(1), by_t.get(2)
         if one is None:
             continue
         kd, emb = one["tracers"]["kd"], one["tracers"].get("embree")
         ratio = emb["T_R_median"] / kd["T_R_median"] if emb else None
+        mailbox = one["tracers"].get("kd_mailbox")
+        mb_ratio = emb["T_R_median"] / mailbox["T_R_median"] if emb and mailbox else None
         if ratio is not None:
             ratios.append(ratio)
+            best.append(max(ratio, mb_ratio or 0))
 
         def speed(name):
             if two is None or name not in two["tracers"]:
@@ -99,50 +105,58 @@ def render_summary(records):
 
         v = one["validation"]
         d = v.get("embree_disagreements") or {}
-        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %d/%d brute-force "
+        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %d/%d brute-force "
                    "mismatches, %s Embree disagreements |" % (
                        scene, format(n, ","), preset, kd["T_R_median"],
                        "%.4f s" % emb["T_R_median"] if emb else "-",
                        "%.2f" % ratio if ratio is not None else "-",
+                       "%.2f" % mb_ratio if mb_ratio is not None else "-",
                        speed("kd"), speed("embree"), v["brute_force_mismatches"],
                        v["brute_force_checked"], d.get("total", "-")))
     if ratios:
         out.append("")
-        out.append("kd/Embree over %d rows: median %.2f, range %.2f to %.2f." % (
-            len(ratios), statistics.median(ratios), min(ratios), max(ratios)))
+        out.append("kd/Embree over %d rows: median %.2f, range %.2f to %.2f; the better "
+                   "of kd and kd with mailbox: median %.2f, range %.2f to %.2f, %d of %d "
+                   "at 0.7 or more." % (
+                       len(ratios), statistics.median(ratios), min(ratios), max(ratios),
+                       statistics.median(best), min(best), max(best),
+                       sum(b >= 0.7 for b in best), len(best)))
     return "\n".join(out)
 
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--index", default=os.path.join(ROOT, "data", "cache", "scenes",
-                                                   "index.json"))
-    p.add_argument("--cache_dir", default=os.path.join(ROOT, "data", "cache", "soups"))
+    p.add_argument("--repo", default=ROOT,
+                   help="checkout whose data/ holds the fetched scenes (index, soups)")
     p.add_argument("--out", default=os.path.join(ROOT, "out", "bench"))
     p.add_argument("--scenes", default="", help="comma-separated subset")
     p.add_argument("--build_min_tris", type=int, default=1000000)
     p.add_argument("--build_presets", default=BUILD_PRESETS)
     p.add_argument("--render_min_tris", type=int, default=50000)
-    p.add_argument("--render_preset", default="sah-hybrid")
+    p.add_argument("--render_preset", default="sah-packet")
+    p.add_argument("--render_variants", default="kd,kd_mailbox")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")
     p.add_argument("--summary_only", action="store_true")
     a = p.parse_args(argv)
+    index = os.path.join(a.repo, "data", "cache", "scenes", "index.json")
+    cache_dir = os.path.join(a.repo, "data", "cache", "soups")
     os.makedirs(a.out, exist_ok=True)
     build_out = os.path.join(a.out, "build.jsonl")
     render_out = os.path.join(a.out, "render.jsonl")
     if not a.summary_only:
         if not a.skip_build:
-            for name, s in scenes_from_index(a.index, a.build_min_tris, a.scenes):
-                run([os.path.join(BIN, "build_bench"), "--mesh", os.path.join(ROOT, s["file"]),
-                     "--name", name, "--cache_dir", a.cache_dir, "--presets", a.build_presets,
+            for name, s in scenes_from_index(index, a.build_min_tris, a.scenes):
+                run([os.path.join(BIN, "build_bench"), "--mesh", os.path.join(a.repo, s["file"]),
+                     "--name", name, "--cache_dir", cache_dir, "--presets", a.build_presets,
                      "--threads", "1,2", "--repeats", str(a.repeats), "--out", build_out])
         if not a.skip_render:
-            for name, _ in scenes_from_index(a.index, a.render_min_tris, a.scenes):
-                run([os.path.join(BIN, "render_bench"), "--repo", ROOT, "--scenes", name,
-                     "--cache_dir", a.cache_dir, "--preset", a.render_preset,
-                     "--threads", "1,2", "--repeats", str(a.repeats), "--variants", "kd",
+            for name, _ in scenes_from_index(index, a.render_min_tris, a.scenes):
+                run([os.path.join(BIN, "render_bench"), "--repo", a.repo, "--scenes", name,
+                     "--cache_dir", cache_dir, "--preset", a.render_preset,
+                     "--threads", "1,2", "--repeats", str(a.repeats),
+                     "--variants", a.render_variants,
                      "--out", render_out])
     print("## Build (build_bench)\n")
     print(build_summary(read(build_out)))

@@ -42,7 +42,7 @@ class BenchTest(unittest.TestCase):
                                    "embree_disagreements": {"total": 3}}}
         text = bench.render_summary([rec(1, 0.2, 0.1), rec(2, 0.1, 0.05)])
         row = text.splitlines()[2]
-        self.assertIn("| 0.50 | 2.00x | 2.00x |", row)
+        self.assertIn("| 0.50 | - | 2.00x | 2.00x |", row)
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
 
