@@ -144,6 +144,25 @@ class KdtreeAnalysisTest(unittest.TestCase):
         self.assertEqual(macros["EmbreeEmbreeWrong"][0], "2")
         self.assertIn("Clipping", self.read("embree.tex"))
 
+    def test_embree_table_has_the_variant_beyond_the_report(self):
+        from analysis import embree
+        path = os.path.join(self.ctx.results_dir, kr.KDTREE_FILE)
+        with open(path, "a") as f:
+            for variant, t_r in (("clipping", 0.4), ("sah-packet", 0.25)):
+                rec = record("alpha", variant, T_R=t_r, n_tri=60000)
+                rec["embree"] = {"T_B": 0.1, "T_R": 0.2}
+                f.write(json.dumps(rec) + "\n")
+        macros = embree.generate(self.ctx)
+        # The nine's best is still clipping (0.5); sah-packet reaches 0.8.
+        self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")
+        self.assertEqual(macros["EmbreePacketScenes"][0], "1")
+        self.assertEqual(macros["EmbreePacketRatioMedian"][0], "0.80")
+        self.assertEqual(macros["EmbreePacketBigScenes"][0], "1")
+        self.assertEqual(macros["EmbreePacketBigAtLeastSeventy"][0], "1")
+        self.assertIn("0.80", self.read("embree.tex"))
+        # Not a run of the report's tables.
+        self.assertEqual(kdtree_tables.generate(self.ctx)["NumKdRuns"][0], "27")
+
     def test_figures_are_written(self):
         kdtree_figures.generate(self.ctx)
         for name in ("fig1_build.pdf", "fig2_render.pdf"):

@@ -21,6 +21,10 @@ TITLES = {
     "pruning": "Pruning",
     "clipping-pruning": "Clipping pruning",
 }
+# Beyond the report (experiments/matrix.json, beyond_variants): run by the
+# matrix for the comparison with Embree, not part of the report's tables.
+BEYOND = ["sah-packet"]
+TITLES["sah-packet"] = "SAH per packet of 4"
 # The report's three groups of three columns.
 GROUPS = [VARIANTS[0:3], VARIANTS[3:6], VARIANTS[6:9]]
 

@@ -24,7 +24,9 @@ EXPECTED_MACROS = [
     "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
-    "EmbreeRatioMax", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
+    "EmbreeRatioMax", "EmbreePacketScenes", "EmbreePacketRatioMedian",
+    "EmbreePacketRatioMin", "EmbreePacketRatioMax", "EmbreePacketBigScenes",
+    "EmbreePacketBigAtLeastSeventy", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
     "GalleryImages"
 ] + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS

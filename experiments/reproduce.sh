@@ -80,15 +80,6 @@ step "accuracy versus time: what each step of tree accuracy costs ($PROFILE)"
 "$PY" experiments/accuracy.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \
   --out "$OUT" || echo "reproduce: some accuracy runs failed (see above)" >&2
 
-# ---------------------------------------------------------------------------
-# LATER STAGES GO HERE (each appends raw records under $RESULTS and has a
-# generator in analysis/make_all.py):
-#   - kd-tree build + render runs, the report's nine configurations (Tables 2-10)
-#   - robustness runs
-#   - accuracy vs time
-#   - Embree comparison
-# ---------------------------------------------------------------------------
-
 step "analysis (tables, figures, macros)"
 "$PY" -m analysis.make_all --results "$RESULTS" \
   --manifest data/manifest.json --out report/generated

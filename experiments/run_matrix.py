@@ -78,11 +78,13 @@ def done_keys(results_path):
 
 
 def plan(profile, matrix, manifest, index, scenes=None, variants=None):
-    """[(scene_name, mesh_path, variant)] in manifest order, variants inner."""
+    """[(scene_name, mesh_path, variant)] in manifest order, variants inner
+    (the report's nine, then the beyond_variants)."""
     names = [s["name"] for s in manifest if profile in s.get("profiles", [])]
     if scenes:
         names = [n for n in names if n in scenes]
-    chosen = [v for v in matrix["variants"] if not variants or v in variants]
+    every = matrix["variants"] + matrix.get("beyond_variants", [])
+    chosen = [v for v in every if not variants or v in variants]
     return [(n, index[n], v) for n in names if n in index for v in chosen]
 
 
