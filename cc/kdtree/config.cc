@@ -51,6 +51,16 @@ std::string Config::ToEnvironment() const {
   const Config d;
   std::string extra;
   if (full_sah != d.full_sah) absl::StrAppend(&extra, "    fullSah ", on(full_sah), "\n");
+  if (traversal_cost != d.traversal_cost) {
+    absl::StrAppend(&extra, "    traversalCost ", absl::StrFormat("%.17g", traversal_cost), "\n");
+  }
+  if (intersection_cost != d.intersection_cost) {
+    absl::StrAppend(&extra, "    intersectionCost ", absl::StrFormat("%.17g", intersection_cost),
+                    "\n");
+  }
+  if (empty_bonus != d.empty_bonus) {
+    absl::StrAppend(&extra, "    emptyBonus ", absl::StrFormat("%.17g", empty_bonus), "\n");
+  }
   if (auto_depth != d.auto_depth) absl::StrAppend(&extra, "    autoDepth ", on(auto_depth), "\n");
   if (split_method != d.split_method) {
     absl::StrAppend(&extra, "    splitMethod ", SplitMethodName(split_method), "\n");

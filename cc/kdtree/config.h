@@ -55,9 +55,9 @@ struct Config {
   // maxLeafSize and the depth cap still apply). Off: the report's relaxed
   // SA_L N_L + SA_R N_R and no cost termination.
   bool full_sah = false;
-  double traversal_cost = 15.0;    // K_T (Wald & Havran 2006)
-  double intersection_cost = 20.0; // K_I (Wald & Havran 2006)
-  double empty_bonus = 0.8;        // lambda for a split with an empty side
+  double traversal_cost = 15.0;    // [traversalCost] K_T (Wald & Havran 2006)
+  double intersection_cost = 20.0; // [intersectionCost] K_I (Wald & Havran 2006)
+  double empty_bonus = 0.8;        // [emptyBonus] lambda for a split with an empty side
   // [sahPacket] The full SAH counts a side's references in packets of this
   // many, ceil(N / sahPacket), in C_split and C_leaf (1 = per reference, Wald
   // & Havran 2006). The traversal tests a leaf's triangles 4 at a time

@@ -1,6 +1,7 @@
 #include "cc/kdtree/env_file.h"
 
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -156,6 +157,12 @@ class Parser {
         s = Bool(value, &c.exact_pruning);
       } else if (block == "KDTree" && key.text == "collapse") {
         s = Bool(value, &c.collapse);
+      } else if (block == "KDTree" && key.text == "traversalCost") {
+        s = Double(value, &c.traversal_cost);
+      } else if (block == "KDTree" && key.text == "intersectionCost") {
+        s = Double(value, &c.intersection_cost);
+      } else if (block == "KDTree" && key.text == "emptyBonus") {
+        s = Double(value, &c.empty_bonus);
       } else if (block == "KDTree" && key.text == "sahPacket") {
         s = Int(value, &c.sah_packet);
       } else if (block == "KDTree" && key.text == "buildThreads") {
@@ -181,6 +188,13 @@ class Parser {
       *out = false;
     } else {
       return Error(v.line, "expected ON or OFF, got '" + v.text + "'");
+    }
+    return absl::OkStatus();
+  }
+
+  absl::Status Double(const Token& v, double* out) {
+    if (!absl::SimpleAtod(v.text, out) || !std::isfinite(*out)) {
+      return Error(v.line, "expected a number, got '" + v.text + "'");
     }
     return absl::OkStatus();
   }

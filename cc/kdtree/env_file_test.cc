@@ -35,12 +35,28 @@ KDTree {
 }
 
 TEST(EnvFile, RoundTripsEveryPreset) {
-  for (const std::string& name : PresetNames()) {
+  for (const std::string& name : AllPresetNames()) {
     const Config c = *Preset(name);
     absl::StatusOr<EnvResult> r = ParseEnvironment(c.ToEnvironment(), name + ".env");
     ASSERT_TRUE(r.ok()) << r.status();
     EXPECT_EQ(r->config, c) << name;
   }
+}
+
+TEST(EnvFile, SahConstantsRoundTripAndAreChecked) {
+  Config c = *Preset("sah-packet");
+  c.traversal_cost = 7.25;
+  c.intersection_cost = 0.1;  // not exact in binary: printed with 17 digits
+  c.empty_bonus = 0.9;
+  absl::StatusOr<EnvResult> r = ParseEnvironment(c.ToEnvironment(), "k.env");
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->config, c);
+  EXPECT_NE(c.ToEnvironment().find("traversalCost 7.25"), std::string::npos);
+  EXPECT_EQ(Config().ToEnvironment().find("traversalCost"), std::string::npos);  // defaults unprinted
+  absl::StatusOr<EnvResult> bad =
+      ParseEnvironment("KDTree {\n  traversalCost fast\n}\n", "bad.env");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("bad.env:2"), std::string::npos) << bad.status();
 }
 
 TEST(EnvFile, OneLineFormCommentsAndOtherBlocks) {
