@@ -43,6 +43,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "cc/geometry/exact_area.h"
 #include "cc/geometry/exact_t.h"
@@ -72,19 +73,21 @@ inline float Component(const Vec3& v, int k) {
 }  // namespace watertight_internal
 
 // `ray` must have a nonzero, finite direction (see SanitizeRay in ray_check.h).
+// The axes of the watertight frame for direction d: kz the largest |d|
+// component (ties go to the lower axis), kx and ky the next two cyclically,
+// swapped when d[kz] < 0 to keep the winding.
+inline void WatertightAxes(const Vec3& d, int* kx, int* ky, int* kz) {
+  const float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  *kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+  *kx = *kz == 2 ? 0 : *kz + 1;
+  *ky = *kx == 2 ? 0 : *kx + 1;
+  if (d[*kz] < 0.0f) std::swap(*kx, *ky);
+}
+
 inline WatertightRay MakeWatertightRay(const Ray& ray) {
   WatertightRay w;
   const float d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
-  const float ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
-  // Largest component; ties go to the lower axis.
-  w.kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
-  w.kx = w.kz == 2 ? 0 : w.kz + 1;
-  w.ky = w.kx == 2 ? 0 : w.kx + 1;
-  if (d[w.kz] < 0.0f) {
-    const int tmp = w.kx;
-    w.kx = w.ky;
-    w.ky = tmp;
-  }
+  WatertightAxes(ray.dir, &w.kx, &w.ky, &w.kz);
   w.sx = d[w.kx] / d[w.kz];
   w.sy = d[w.ky] / d[w.kz];
   w.sz = 1.0f / d[w.kz];

@@ -33,12 +33,6 @@ constexpr float kSpatialTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24, see travers
 // Inputs are finite here, so a plain comparison equals std::fmax without the
 // libm call.
 inline float Max(float a, float b) { return a > b ? a : b; }
-
-// The axis of the largest |d| (ties: the lower axis), as MakeWatertightRay.
-inline int DominantAxis(const Vec3& d) {
-  const float ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
-  return ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
-}
 }  // namespace ray_setup
 
 struct RaySetup {
@@ -88,13 +82,14 @@ inline bool SetUpRayScalar(const Ray& ray, const AABB& box, RaySetup* s) {
   }
   s->t_entry = lo;
   s->t_exit = hi;
-  // The ray's largest distance, in t, to the box along its dominant axis: no
-  // triangle vertex is deeper, so it scales every triangle's t error.
-  const int k = ray_setup::DominantAxis(ray.dir);
+  s->wray = MakeWatertightRay(ray);
+  // The ray's largest distance, in t, to the box along its dominant axis
+  // (the watertight frame's kz): no triangle vertex is deeper, so it scales
+  // every triangle's t error.
+  const int k = s->wray.kz;
   const float o = ray.origin[k];
   const float depth = Max(std::fabs(box.lo[k] - o), std::fabs(box.hi[k] - o));
   s->slack = ray_setup::kHitSlack * (depth / std::fabs(ray.dir[k]));
-  s->wray = MakeWatertightRay(ray);
   return true;
 }
 
@@ -148,12 +143,9 @@ inline bool SetUpRay(const Ray& ray, const AABB& box, RaySetup* s) {
   s->negative[2] = std::signbit(ray.dir.z);
   // MakeWatertightRay's three divisions and the slack's one, in one.
   WatertightRay& w = s->wray;
-  const int kz = ray_setup::DominantAxis(ray.dir);
-  w.kz = kz;
-  w.kx = kz == 2 ? 0 : kz + 1;
-  w.ky = w.kx == 2 ? 0 : w.kx + 1;
+  WatertightAxes(ray.dir, &w.kx, &w.ky, &w.kz);
+  const int kz = w.kz;
   const float dz = ray.dir[kz];
-  if (dz < 0.0f) std::swap(w.kx, w.ky);
   const float depth = Max(adl[kz], adh[kz]);
   _mm_store_ps(v, _mm_div_ps(_mm_setr_ps(ray.dir[w.kx], ray.dir[w.ky], 1.0f, depth),
                              _mm_setr_ps(dz, dz, dz, std::fabs(dz))));
