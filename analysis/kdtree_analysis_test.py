@@ -72,6 +72,12 @@ class KdtreeAnalysisTest(unittest.TestCase):
         with open(os.path.join(self.out, name)) as f:
             return f.read()
 
+    def append_run(self, rec, embree_fields):
+        """Appends a kdrt record with Embree's fields to the results."""
+        rec["embree"] = embree_fields
+        with open(os.path.join(self.ctx.results_dir, kr.KDTREE_FILE), "a") as f:
+            f.write(json.dumps(rec) + "\n")
+
     def test_frame_keeps_successful_records_in_manifest_order(self):
         df = kr.frame(self.ctx.results(kr.KDTREE_FILE), self.ctx.manifest)
         self.assertEqual(len(df), 27)
@@ -125,15 +131,11 @@ class KdtreeAnalysisTest(unittest.TestCase):
 
     def test_embree_table_uses_the_fastest_variant(self):
         from analysis import embree
-        path = os.path.join(self.ctx.results_dir, kr.KDTREE_FILE)
-        with open(path, "a") as f:
-            rec = record("alpha", "clipping", T_R=0.4)
-            rec["embree"] = {"T_B": 0.1, "T_R": 0.2, "disagreements_grazing": 2,
-                             "disagreements_at_origin": 3,
-                             "disagreements_t_guard": 1,
-                             "disagreements_other": 0}
-            rec["disagreements"] = {"reference_wrong": 4, "other_wrong": 2}
-            f.write(json.dumps(rec) + "\n")
+        rec = record("alpha", "clipping", T_R=0.4)
+        rec["disagreements"] = {"reference_wrong": 4, "other_wrong": 2}
+        self.append_run(rec, {"T_B": 0.1, "T_R": 0.2, "disagreements_grazing": 2,
+                              "disagreements_at_origin": 3, "disagreements_t_guard": 1,
+                              "disagreements_other": 0})
         macros = embree.generate(self.ctx)
         self.assertEqual(macros["EmbreeScenes"][0], "1")
         self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")
@@ -146,13 +148,10 @@ class KdtreeAnalysisTest(unittest.TestCase):
 
     def test_embree_times_are_the_median_of_its_runs(self):
         from analysis import embree
-        path = os.path.join(self.ctx.results_dir, kr.KDTREE_FILE)
-        with open(path, "a") as f:
-            for variant, t_r, e_t_r in (("clipping", 0.4, 0.9), ("binning-8", 0.5, 0.2),
-                                        ("pruning", 0.6, 0.1)):
-                rec = record("alpha", variant, T_R=t_r)
-                rec["embree"] = {"T_B": e_t_r, "T_R": e_t_r}
-                f.write(json.dumps(rec) + "\n")
+        for variant, t_r, e_t_r in (("clipping", 0.4, 0.9), ("binning-8", 0.5, 0.2),
+                                    ("pruning", 0.6, 0.1)):
+            self.append_run(record("alpha", variant, T_R=t_r),
+                            {"T_B": e_t_r, "T_R": e_t_r})
         macros = embree.generate(self.ctx)
         # Fastest kd run 0.4 s (clipping) against Embree's median 0.2 s, not
         # against the 0.9 s Embree took beside it.
@@ -163,12 +162,9 @@ class KdtreeAnalysisTest(unittest.TestCase):
 
     def test_embree_table_has_the_variant_beyond_the_report(self):
         from analysis import embree
-        path = os.path.join(self.ctx.results_dir, kr.KDTREE_FILE)
-        with open(path, "a") as f:
-            for variant, t_r in (("clipping", 0.4), ("sah-packet", 0.25)):
-                rec = record("alpha", variant, T_R=t_r, n_tri=60000)
-                rec["embree"] = {"T_B": 0.1, "T_R": 0.2}
-                f.write(json.dumps(rec) + "\n")
+        for variant, t_r in (("clipping", 0.4), ("sah-packet", 0.25)):
+            self.append_run(record("alpha", variant, T_R=t_r, n_tri=60000),
+                            {"T_B": 0.1, "T_R": 0.2})
         macros = embree.generate(self.ctx)
         # The nine's best is still clipping (0.2 / 0.4); sah-packet 0.2 / 0.25.
         self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")

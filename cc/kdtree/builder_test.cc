@@ -116,6 +116,13 @@ TEST(Builder, RejectsNonFiniteVerticesAndBadConfig) {
   EXPECT_FALSE(BuildKdTree(testing::BumpySphere(1, 1), bad).ok());
 }
 
+// Two arrays of the same size hold the same bytes.
+template <class V>
+bool SameBytes(const V& a, const V& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), a.size() * sizeof(typename V::value_type)) == 0;
+}
+
 TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
   const TriangleSoup soup = testing::BumpySphere(5, 11);  // 20,480 triangles
   for (const char* name : {"binning-8", "clipping-pruning", "median-24-8", "sah-binned-32",
@@ -130,25 +137,13 @@ TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
       const KdTree parallel = *BuildKdTree(soup, c);
       ASSERT_EQ(serial.nodes.size(), parallel.nodes.size()) << name << threads;
       ASSERT_EQ(serial.refs.size(), parallel.refs.size()) << name << threads;
-      EXPECT_EQ(std::memcmp(serial.nodes.data(), parallel.nodes.data(),
-                            serial.nodes.size() * sizeof(KdNode)),
-                0)
-          << name << threads;
-      EXPECT_EQ(std::memcmp(serial.refs.data(), parallel.refs.data(),
-                            serial.refs.size() * sizeof(uint32_t)),
-                0)
-          << name << threads;
+      EXPECT_TRUE(SameBytes(serial.nodes, parallel.nodes)) << name << threads;
+      EXPECT_TRUE(SameBytes(serial.refs, parallel.refs)) << name << threads;
       // The leaf layout, filled in parallel too.
       ASSERT_EQ(serial.leaf_nodes.size(), parallel.leaf_nodes.size()) << name << threads;
       ASSERT_EQ(serial.leaf_soa.size(), parallel.leaf_soa.size()) << name << threads;
-      EXPECT_EQ(std::memcmp(serial.leaf_nodes.data(), parallel.leaf_nodes.data(),
-                            serial.leaf_nodes.size() * sizeof(KdNode)),
-                0)
-          << name << threads;
-      EXPECT_EQ(std::memcmp(serial.leaf_soa.data(), parallel.leaf_soa.data(),
-                            serial.leaf_soa.size() * sizeof(float)),
-                0)
-          << name << threads;
+      EXPECT_TRUE(SameBytes(serial.leaf_nodes, parallel.leaf_nodes)) << name << threads;
+      EXPECT_TRUE(SameBytes(serial.leaf_soa, parallel.leaf_soa)) << name << threads;
       EXPECT_EQ(TreeFingerprint(serial), TreeFingerprint(parallel)) << name << threads;
       EXPECT_EQ(serial.counters.clipped, parallel.counters.clipped) << name << threads;
       EXPECT_EQ(serial.counters.pruned(), parallel.counters.pruned()) << name << threads;
