@@ -1,22 +1,116 @@
 #include "cc/base/huge_pages.h"
 
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <cstdlib>
+#include <mutex>
+#include <vector>
 
 namespace kdtree {
+namespace {
 
-void* AllocateHugePages(size_t bytes) {
+struct Block {
+  void* p;
+  size_t bytes;  // rounded to whole huge pages
+};
+
+// Freed blocks kept for reuse (see "Reuse" in huge_pages.h).
+struct Cache {
+  std::mutex mu;
+  std::vector<Block> blocks;
+  size_t bytes = 0;
+  size_t limit = DefaultHugePageCacheLimit();
+};
+
+Cache& TheCache() {
+  static Cache* cache = new Cache();  // never destroyed: used until exit
+  return *cache;
+}
+
+size_t Rounded(size_t bytes) {
   const size_t rounded = (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
   if (rounded < bytes) throw std::bad_alloc();
+  return rounded;
+}
+
+}  // namespace
+
+size_t DefaultHugePageCacheLimit() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return 0;
+  return static_cast<size_t>(pages) * static_cast<size_t>(page) / 4;
+}
+
+void SetHugePageCacheLimit(size_t bytes) {
+  Cache& c = TheCache();
+  std::vector<Block> drop;
+  {
+    std::lock_guard<std::mutex> lock(c.mu);
+    c.limit = bytes;
+    while (c.bytes > c.limit && !c.blocks.empty()) {
+      drop.push_back(c.blocks.back());
+      c.bytes -= c.blocks.back().bytes;
+      c.blocks.pop_back();
+    }
+  }
+  for (const Block& b : drop) std::free(b.p);
+}
+
+size_t HugePageCacheBytes() {
+  Cache& c = TheCache();
+  std::lock_guard<std::mutex> lock(c.mu);
+  return c.bytes;
+}
+
+void* AllocateHugePages(size_t bytes) {
+  const size_t rounded = Rounded(bytes);
+  {
+    // Best fit among the kept blocks: the smallest that is large enough.
+    Cache& c = TheCache();
+    std::lock_guard<std::mutex> lock(c.mu);
+    size_t best = c.blocks.size();
+    for (size_t i = 0; i < c.blocks.size(); ++i) {
+      if (c.blocks[i].bytes >= rounded &&
+          (best == c.blocks.size() || c.blocks[i].bytes < c.blocks[best].bytes)) {
+        best = i;
+      }
+    }
+    if (best != c.blocks.size()) {
+      void* p = c.blocks[best].p;
+      c.bytes -= c.blocks[best].bytes;
+      c.blocks[best] = c.blocks.back();
+      c.blocks.pop_back();
+      return p;
+    }
+  }
   void* p = std::aligned_alloc(kHugePageBytes, rounded);
-  if (p == nullptr) throw std::bad_alloc();
+  if (p == nullptr) {
+    // Memory the cache holds may be what is missing: give it back and retry.
+    SetHugePageCacheLimit(0);
+    SetHugePageCacheLimit(DefaultHugePageCacheLimit());
+    p = std::aligned_alloc(kHugePageBytes, rounded);
+    if (p == nullptr) throw std::bad_alloc();
+  }
   // Before the first write: the kernel then backs each 2 MiB with one page.
   // A refusal (no THP support) leaves ordinary pages; nothing else changes.
   madvise(p, rounded, MADV_HUGEPAGE);
   return p;
 }
 
-void FreeHugePages(void* p) { std::free(p); }
+void FreeHugePages(void* p, size_t bytes) {
+  if (p == nullptr) return;
+  const size_t rounded = Rounded(bytes);
+  {
+    Cache& c = TheCache();
+    std::lock_guard<std::mutex> lock(c.mu);
+    if (c.bytes + rounded <= c.limit && c.blocks.size() < kMaxCachedBlocks) {
+      c.blocks.push_back(Block{p, rounded});
+      c.bytes += rounded;
+      return;
+    }
+  }
+  std::free(p);
+}
 
 }  // namespace kdtree

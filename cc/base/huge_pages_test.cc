@@ -39,5 +39,56 @@ TEST(HugePages, ImpossibleRequestsThrow) {
   EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 4), std::bad_alloc);
 }
 
+TEST(HugePages, FreedBlocksAreReusedByRequestsTheyFit) {
+  SetHugePageCacheLimit(DefaultHugePageCacheLimit());
+  SetHugePageCacheLimit(0);  // start empty
+  SetHugePageCacheLimit(64 * kHugePageBytes);
+  void* big = AllocateHugePages(3 * kHugePageBytes);
+  void* small = AllocateHugePages(kHugePageBytes);
+  static_cast<char*>(big)[0] = 7;
+  FreeHugePages(big, 3 * kHugePageBytes);
+  FreeHugePages(small, kHugePageBytes);
+  EXPECT_EQ(HugePageCacheBytes(), 4 * kHugePageBytes);
+  // Best fit: a one-page request takes the one-page block, not the larger.
+  EXPECT_EQ(AllocateHugePages(kHugePageBytes / 2), small);
+  // A request larger than every kept block gets fresh memory.
+  void* fresh = AllocateHugePages(4 * kHugePageBytes);
+  EXPECT_NE(fresh, big);
+  EXPECT_EQ(AllocateHugePages(2 * kHugePageBytes + 1), big);
+  EXPECT_EQ(static_cast<char*>(big)[0], 7);  // not zeroed: the same memory
+  EXPECT_EQ(HugePageCacheBytes(), 0u);
+  FreeHugePages(fresh, 4 * kHugePageBytes);
+  FreeHugePages(big, 3 * kHugePageBytes);
+  FreeHugePages(small, kHugePageBytes);
+  EXPECT_EQ(HugePageCacheBytes(), 8 * kHugePageBytes);
+  SetHugePageCacheLimit(DefaultHugePageCacheLimit());
+}
+
+TEST(HugePages, TheLimitBoundsWhatIsKept) {
+  SetHugePageCacheLimit(0);
+  void* a = AllocateHugePages(2 * kHugePageBytes);
+  FreeHugePages(a, 2 * kHugePageBytes);
+  EXPECT_EQ(HugePageCacheBytes(), 0u);  // limit 0: freed at once
+  SetHugePageCacheLimit(3 * kHugePageBytes);
+  void* b = AllocateHugePages(2 * kHugePageBytes);
+  void* c = AllocateHugePages(2 * kHugePageBytes);
+  FreeHugePages(b, 2 * kHugePageBytes);
+  FreeHugePages(c, 2 * kHugePageBytes);  // would exceed the limit: freed
+  EXPECT_EQ(HugePageCacheBytes(), 2 * kHugePageBytes);
+  SetHugePageCacheLimit(kHugePageBytes);  // lowering frees to meet it
+  EXPECT_EQ(HugePageCacheBytes(), 0u);
+  SetHugePageCacheLimit(DefaultHugePageCacheLimit());
+}
+
+TEST(HugePages, ReusedVectorsStillValueInitialise) {
+  SetHugePageCacheLimit(DefaultHugePageCacheLimit());
+  const size_t n = 2 * kHugePageBytes / sizeof(uint32_t);
+  {
+    HugeVector<uint32_t> dirty(n, 0xDEADBEEFu);
+  }
+  HugeVector<uint32_t> clean(n);  // may get the block just freed
+  for (size_t i = 0; i < n; i += 1021) ASSERT_EQ(clean[i], 0u);
+}
+
 }  // namespace
 }  // namespace kdtree

@@ -25,7 +25,10 @@
 //
 // Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
 // layout: vertices read by triangle index, the traversal before the layout),
-// "kd_mailbox" (leaf layout and mailboxing, traversal.h).
+// "kd_mailbox" (leaf layout and mailboxing, traversal.h). --envs adds one
+// tree per environment file (the preset with the file on top), timed with the
+// kd traversal in the same rounds: constants are tuned on the same rays and
+// under the same load, and every such tree must give kd's exact hits.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -47,6 +50,7 @@
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/config.h"
+#include "cc/kdtree/env_file.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/render/compare.h"
 #include "cc/render/json.h"
@@ -65,6 +69,10 @@ ABSL_FLAG(int, repeats, 5, "Timed rounds per thread count (each renders every tr
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox",
           "kd-tree variants to time: kd, kd_index, kd_mailbox.");
+ABSL_FLAG(std::string, envs, "",
+          "Comma-separated environment files (env_file.h), each applied on top of --preset to "
+          "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
+          "a tree's constants on the same rays; its image must equal kd's).");
 ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
 
@@ -138,6 +146,21 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);
   const BruteForce bf(*soup);
 
+  // Extra trees: the preset with an environment file on top.
+  std::vector<std::pair<std::string, std::unique_ptr<KdTree>>> env_trees;
+  std::vector<std::unique_ptr<KdTreeTracer>> env_tracers;
+  for (const std::string& path : std::vector<std::string>(
+           absl::StrSplit(absl::GetFlag(FLAGS_envs), ',', absl::SkipEmpty()))) {
+    absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, *config);
+    if (!env.ok()) return env.status();
+    absl::StatusOr<KdTree> t = BuildKdTree(*soup, env->config);
+    if (!t.ok()) return t.status();
+    const size_t slash = path.find_last_of('/');
+    env_trees.emplace_back(absl::StrCat("env:", slash == std::string::npos ? path : path.substr(slash + 1)),
+                           std::make_unique<KdTree>(*std::move(t)));
+    env_tracers.push_back(std::make_unique<KdTreeTracer>(*env_trees.back().second));
+  }
+
   std::vector<std::string> variants = absl::StrSplit(absl::GetFlag(FLAGS_variants), ',');
   std::vector<Entry> proto;
   for (const std::string& v : variants) {
@@ -151,6 +174,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
   }
+  for (size_t i = 0; i < env_trees.size(); ++i) proto.emplace_back(env_trees[i].first, env_tracers[i].get());
 
   // Validation (untimed).
   RenderOptions ropt;
