@@ -49,7 +49,9 @@ inline float BinPlane(float lo, float extent, int i, int bins) {
 
 // Start and end bins of every reference on the three axes in one pass:
 // starts[axis * bins + BinOf(box.lo[axis], ...)] and likewise ends with
-// box.hi, exactly the bins of the scalar BinOf (SSE, four lanes).
+// box.hi, exactly the bins of the scalar BinOf (SSE, four lanes). The
+// counts are the first 3 bins entries of scratch->starts and ->ends (the
+// arrays are longer: partial histograms are summed into them).
 void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
                       BinScratch* scratch);
 

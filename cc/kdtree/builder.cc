@@ -118,16 +118,16 @@ class Builder {
     const AABB right_box = box.RightOf(split.axis, split.pos);
     const size_t left_begin = pool_.size();
     Partition(begin, end, external, split, left_box, right_box);
-    const size_t right_begin = left_begin + left_count_;
+    const size_t right_begin = left_begin + count;  // see Partition
     const size_t right_end = pool_.size();
     if (pool_.size() > counters().peak_build_refs) counters().peak_build_refs = pool_.size();
 
     if (count >= kParallelMinRefs && depth < parallel_depth_) {
-      RecurseInParallel(node, left_begin, right_begin, right_end, left_box, right_box, depth,
-                        split);
+      RecurseInParallel(node, left_begin, left_begin + left_count_, right_begin, right_end,
+                        left_box, right_box, depth, split);
       return;
     }
-    Recurse(left_begin, right_begin, left_box, depth + 1);
+    Recurse(left_begin, left_begin + left_count_, left_box, depth + 1);
     const size_t right_node = tree_->nodes.size();
     if (right_node > KdNode::kMaxIndex) overflow_ = true;
     tree_->nodes[node] =
@@ -151,8 +151,8 @@ class Builder {
 
   // The two children as two fragments built at once (parallel_build.h),
   // under two placeholder nodes.
-  void RecurseInParallel(uint32_t node, size_t left_begin, size_t right_begin, size_t right_end,
-                         const AABB& left_box, const AABB& right_box, int depth,
+  void RecurseInParallel(uint32_t node, size_t left_begin, size_t left_end, size_t right_begin,
+                         size_t right_end, const AABB& left_box, const AABB& right_box, int depth,
                          const Split& split) {
     assert(tree_->nodes.size() == size_t{node} + 1);
     if (size_t{node} + 2 > KdNode::kMaxIndex) overflow_ = true;
@@ -166,7 +166,7 @@ class Builder {
     const BuildRef* refs = pool_.data();
     tbb::task_group group;
     group.run(
-        [&] { lb.RunFragment(refs + left_begin, right_begin - left_begin, left_box, depth + 1); });
+        [&] { lb.RunFragment(refs + left_begin, left_end - left_begin, left_box, depth + 1); });
     rb.RunFragment(refs + right_begin, right_end - right_begin, right_box, depth + 1);
     group.wait();
     pool_.Resize(left_begin);
@@ -175,16 +175,18 @@ class Builder {
     fragment_->children.emplace_back(node + 2, std::move(right));
   }
 
-  // Appends the left references, then the right ones, at the end of the pool,
-  // each side in the order of the node's references. Every reference yields
-  // at most one left and one right reference, so the pool and the right-side
-  // buffer are grown once up front and written through raw pointers.
+  // Appends 2 count slots to the pool: the left references from the first,
+  // the right ones from slot `count`, each side in the order of the node's
+  // references (left_count_ of them on the left, the right side ends at the
+  // pool's new end). Every reference yields at most one left and one right
+  // reference, so neither side can overrun the other; the slots between them
+  // stay unused until the node is done (a copy of the right side next to the
+  // left one cost 5 % of a binned build).
   void Partition(size_t begin, size_t end, const BuildRef* external, const Split& split,
                  const AABB& left_box, const AABB& right_box) {
     const size_t count = end - begin;
     BuildRef* const left_first = pool_.Reserved(2 * count);
-    right_.Resize(0);
-    BuildRef* const right_first = right_.Reserved(count);
+    BuildRef* const right_first = left_first + count;
     // Stable: no growth below.
     const BuildRef* const src = external != nullptr ? external : pool_.data() + begin;
     Cursors out{left_first, right_first};
@@ -195,8 +197,7 @@ class Builder {
     }
     left_count_ = static_cast<size_t>(out.left - left_first);
     const size_t right_count = static_cast<size_t>(out.right - right_first);
-    std::memcpy(out.left, right_first, right_count * sizeof(BuildRef));
-    pool_.Resize(pool_.size() + left_count_ + right_count);
+    pool_.Resize(pool_.size() + count + right_count);
   }
 
   struct Cursors {
@@ -240,15 +241,18 @@ class Builder {
                          const AABB& left_box, const AABB& right_box, Cursors* out) {
     const int axis = split.axis;
     const float pos = split.pos;
+    // Locals: the stores below could alias the configuration's fields.
     const bool conservative = !config_.seed_compatible;
+    const bool perfect = config_.perfect_splits, clipping = config_.use_clipping;
+    const bool seed = config_.seed_compatible;
     for (size_t i = 0; i < count; ++i) {
       const BuildRef r = src[i];
       const float lo = r.box.lo[axis], hi = r.box.hi[axis];
-      if (config_.perfect_splits && lo < pos && hi > pos) {
+      if (perfect && lo < pos && hi > pos) {
         PerfectSplit(r, left_box, right_box, out);
         continue;
       }
-      if (config_.use_clipping && lo < pos && hi > pos) {
+      if (clipping && lo < pos && hi > pos) {
         AABB lb, rb;
         // Seed-compatible mode: the parts' boxes are not intersected with the
         // reference's box (closest to the report's row 18: N_CL 4,595 vs 4,983).
@@ -263,7 +267,7 @@ class Builder {
       }
       bool to_left = lo < pos, to_right = hi > pos;
       if (!to_left && !to_right) {  // lo == hi == pos: lies in the plane
-        if (config_.seed_compatible) {
+        if (seed) {
           ++counters().lost_planar;
           continue;
         }
@@ -341,7 +345,6 @@ class Builder {
   Fragment* fragment_;
   KdTree* tree_;
   RefPool pool_;
-  RefPool right_;  // the right side of a partition, before it joins the pool
   size_t left_count_ = 0;
   const int max_depth_;
   const int parallel_depth_;

@@ -92,19 +92,29 @@ int Sign(float x, float pos) { return x < pos ? -1 : (x > pos ? 1 : 0); }
 }  // namespace
 
 ClipCase ClassifyTriangle(const Vec3& a, const Vec3& b, const Vec3& c, int axis, float pos) {
-  int s[3] = {Sign(a[axis], pos), Sign(b[axis], pos), Sign(c[axis], pos)};
-  std::sort(s, s + 3);
-  if (s[0] != -1 || s[2] != 1) return ClipCase::kNotStraddling;
-  if (s[1] == 0) return ClipCase::kMiddleOnPlane;
-  return s[1] == 1 ? ClipCase::kLowAlone : ClipCase::kHighAlone;
+  // The sorted signs are (-1, s, 1) when the triangle straddles: s is told by
+  // how many vertices lie below and above the plane.
+  const int sa = Sign(a[axis], pos), sb = Sign(b[axis], pos), sc = Sign(c[axis], pos);
+  const int below = (sa < 0) + (sb < 0) + (sc < 0), above = (sa > 0) + (sb > 0) + (sc > 0);
+  if (below == 0 || above == 0) return ClipCase::kNotStraddling;
+  if (below + above == 2) return ClipCase::kMiddleOnPlane;
+  return below == 1 ? ClipCase::kLowAlone : ClipCase::kHighAlone;
 }
 
 ClipCase ClipTriangle(const Vec3& a, const Vec3& b, const Vec3& c, int axis, float pos,
                       const AABB& ref_box, bool conservative, AABB* left, AABB* right) {
   const ClipCase kind = ClassifyTriangle(a, b, c, axis, pos);
   if (kind == ClipCase::kNotStraddling) return kind;
+  // Vertices by coordinate on `axis` (three compare-exchanges). The order of
+  // equal coordinates does not matter: a tie is possible only between the
+  // two vertices on one side, and each case below treats those two alike.
   const Vec3* v[3] = {&a, &b, &c};
-  std::sort(v, v + 3, [axis](const Vec3* p, const Vec3* q) { return (*p)[axis] < (*q)[axis]; });
+  const auto order = [axis](const Vec3*& p, const Vec3*& q) {
+    if ((*q)[axis] < (*p)[axis]) std::swap(p, q);
+  };
+  order(v[0], v[1]);
+  order(v[1], v[2]);
+  order(v[0], v[1]);
   if (conservative) {
     const DVec sorted[3] = {ToD(*v[0]), ToD(*v[1]), ToD(*v[2])};
     return ClipImpl<double>(sorted, kind, axis, static_cast<double>(pos), true, ref_box, left,

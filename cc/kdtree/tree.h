@@ -46,7 +46,9 @@ struct BuildCounters {
   uint64_t pruned_box = 0;     // clipped boxes outside their child, dropped
   uint64_t pruned_leaf = 0;    // triangles whose surface misses the leaf box
   uint64_t lost_planar = 0;    // seed mode only: in-plane references sent nowhere
-  uint64_t peak_build_refs = 0;  // largest number of build references alive at once
+  // Largest number of build-reference slots in use at once: the references
+  // and the slots a partition leaves between its two sides (builder.cc).
+  uint64_t peak_build_refs = 0;
   uint64_t pruned() const { return pruned_box + pruned_leaf; }  // N_PR
 };
 
