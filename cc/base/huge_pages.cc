@@ -66,12 +66,14 @@ size_t HugePageCacheBytes() {
 void* AllocateHugePages(size_t bytes) {
   const size_t rounded = Rounded(bytes);
   {
-    // Best fit among the kept blocks: the smallest that is large enough.
+    // Best fit among the kept blocks: the smallest that is large enough and
+    // at most twice the request (a small array must not take the block a
+    // large one will ask for next: that one would get fresh pages).
     Cache& c = TheCache();
     std::lock_guard<std::mutex> lock(c.mu);
     size_t best = c.blocks.size();
     for (size_t i = 0; i < c.blocks.size(); ++i) {
-      if (c.blocks[i].bytes >= rounded &&
+      if (c.blocks[i].bytes >= rounded && c.blocks[i].bytes / 2 <= rounded &&
           (best == c.blocks.size() || c.blocks[i].bytes < c.blocks[best].bytes)) {
         best = i;
       }

@@ -20,7 +20,7 @@
 // build that writes 400 MB of leaf packets spent a third of its time in the
 // kernel's clear_page (perf). Freed blocks are therefore kept, up to a quarter
 // of physical memory (SetHugePageCacheLimit), and handed to the next request
-// they fit (best fit), as a renderer that rebuilds its tree keeps its memory.
+// they fit (best fit, at most twice the size asked for), as a renderer that rebuilds its tree keeps its memory.
 // A build in a fresh process still pays for fresh pages: benchmarks record
 // every repeat, the first one included (build_bench, kdrt's T_B_runs).
 #ifndef KDTREE_CC_BASE_HUGE_PAGES_H_
@@ -45,7 +45,7 @@ void FreeHugePages(void* p, size_t bytes);
 
 // The reuse cache: at most `bytes` of freed blocks are kept (0 = none, every
 // block is freed at once); lowering the limit frees blocks to meet it.
-inline constexpr size_t kMaxCachedBlocks = 64;
+inline constexpr size_t kMaxCachedBlocks = 256;
 size_t DefaultHugePageCacheLimit();  // a quarter of physical memory
 void SetHugePageCacheLimit(size_t bytes);
 size_t HugePageCacheBytes();

@@ -54,13 +54,19 @@ TEST(HugePages, FreedBlocksAreReusedByRequestsTheyFit) {
   // A request larger than every kept block gets fresh memory.
   void* fresh = AllocateHugePages(4 * kHugePageBytes);
   EXPECT_NE(fresh, big);
+  // A block more than twice the request is left for a larger one.
+  void* other = AllocateHugePages(kHugePageBytes);
+  EXPECT_NE(other, big);
+  FreeHugePages(other, kHugePageBytes);
   EXPECT_EQ(AllocateHugePages(2 * kHugePageBytes + 1), big);
+  EXPECT_EQ(AllocateHugePages(kHugePageBytes), other);
   EXPECT_EQ(static_cast<char*>(big)[0], 7);  // not zeroed: the same memory
   EXPECT_EQ(HugePageCacheBytes(), 0u);
   FreeHugePages(fresh, 4 * kHugePageBytes);
   FreeHugePages(big, 3 * kHugePageBytes);
   FreeHugePages(small, kHugePageBytes);
-  EXPECT_EQ(HugePageCacheBytes(), 8 * kHugePageBytes);
+  FreeHugePages(other, kHugePageBytes);
+  EXPECT_EQ(HugePageCacheBytes(), 9 * kHugePageBytes);
   SetHugePageCacheLimit(DefaultHugePageCacheLimit());
 }
 
