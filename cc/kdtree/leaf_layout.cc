@@ -1,5 +1,7 @@
 #include "cc/kdtree/leaf_layout.h"
 
+#include <xmmintrin.h>
+
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -16,26 +18,39 @@ constexpr size_t kChunkNodes = 16384;
 
 uint32_t PacketsOf(uint32_t count) { return (count + kPacketLanes - 1) / kPacketLanes; }
 
-// Writes the packets of leaf `node` (count > 0) at `out`.
+// Writes the packets of leaf `node` (count > 0) at `out`. A packet's 36
+// vertex floats are the transpose of its 4 triangles' 9 floats each (float f
+// of lane l at f * 4 + l): two 4x4 transposes and a column, with zero rows
+// for padding lanes.
 void WriteLeaf(const KdTree& tree, const KdNode& node, float* out) {
+  static_assert(kPacketLanes == 4 && kPacketIds == 36, "the transpose below is 4 x 9");
+  static_assert(sizeof(Vec3) == 3 * sizeof(float), "a triangle is 9 packed floats");
   const uint32_t count = tree.LeafCount(node);
   const uint32_t* tris = tree.LeafBegin(node);
   const uint32_t packets = PacketsOf(count);
+  static const float kZero[9] = {};
+  const float* verts = reinterpret_cast<const float*>(tree.verts.data());
   for (uint32_t j = 0; j < packets; ++j, out += kPacketFloats) {
+    const float* row[kPacketLanes];
+    alignas(16) uint32_t id[kPacketLanes];
     for (int lane = 0; lane < kPacketLanes; ++lane) {
       const uint32_t k = j * kPacketLanes + lane;
-      uint32_t id = kPadLane;
-      for (int v = 0; v < 3; ++v) {
-        // Padding lanes: zero vertices.
-        const Vec3 p = k < count ? tree.verts[3 * static_cast<size_t>(tris[k]) + v] : Vec3();
-        out[(3 * v + 0) * kPacketLanes + lane] = p.x;
-        out[(3 * v + 1) * kPacketLanes + lane] = p.y;
-        out[(3 * v + 2) * kPacketLanes + lane] = p.z;
-      }
-      if (k < count) id = tris[k];
-      if (lane == 0 && j + 1 == packets) id |= kLastPacket;
-      std::memcpy(&out[kPacketIds + lane], &id, sizeof(id));
+      row[lane] = k < count ? verts + 9 * static_cast<size_t>(tris[k]) : kZero;
+      id[lane] = k < count ? tris[k] : kPadLane;
     }
+    if (j + 1 == packets) id[0] |= kLastPacket;
+    for (int half = 0; half < 2; ++half) {
+      __m128 r0 = _mm_loadu_ps(row[0] + 4 * half), r1 = _mm_loadu_ps(row[1] + 4 * half);
+      __m128 r2 = _mm_loadu_ps(row[2] + 4 * half), r3 = _mm_loadu_ps(row[3] + 4 * half);
+      _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+      float* o = out + 16 * half;
+      _mm_storeu_ps(o + 0, r0);
+      _mm_storeu_ps(o + 4, r1);
+      _mm_storeu_ps(o + 8, r2);
+      _mm_storeu_ps(o + 12, r3);
+    }
+    for (int lane = 0; lane < kPacketLanes; ++lane) out[32 + lane] = row[lane][8];
+    std::memcpy(out + kPacketIds, id, sizeof(id));
   }
 }
 
