@@ -109,7 +109,7 @@ def render(data):
                "the scene, one beside each kd-tree run. perf kd/Embree is "
                "Embree's render time over ours (1 = as fast as Embree). SAH-4 is our tree beyond the "
                "report (preset \\texttt{sah-packet}: the full SAH counted per "
-               "packet of 4, hybrid split search, clipping and pruning). "
+               "packet of 4, $K_T = 45$, hybrid split search, clipping and pruning). "
                "Disagreements are summed over "
                "the nine variants and judged in exact arithmetic: "
                "``grazing'' rays pass within 4 ulps of a triangle edge "

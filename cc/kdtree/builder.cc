@@ -246,7 +246,10 @@ class Builder {
     const bool perfect = config_.perfect_splits, clipping = config_.use_clipping;
     const bool seed = config_.seed_compatible;
     for (size_t i = 0; i < count; ++i) {
-      const BuildRef r = src[i];
+      // A reference, not a copy: a copy on the stack read back in 16-byte
+      // halves missed store forwarding on every reference (perf: 40 % of
+      // this loop). The sources are never written here.
+      const BuildRef& r = src[i];
       const float lo = r.box.lo[axis], hi = r.box.hi[axis];
       if (perfect && lo < pos && hi > pos) {
         PerfectSplit(r, left_box, right_box, out);

@@ -164,7 +164,7 @@ TEST(Builder, SahPacketCountsPacketsOfReferences) {
   // On a mesh: fuller leaves and a smaller tree than per-reference counts.
   const TriangleSoup soup = testing::BumpySphere(5, 11);
   const TreeStats one = ComputeStats(*BuildKdTree(soup, c));
-  const TreeStats four = ComputeStats(*BuildKdTree(soup, *Preset("sah-packet")));
+  const TreeStats four = ComputeStats(*BuildKdTree(soup, p));
   EXPECT_LT(four.inner, one.inner);
   EXPECT_GT(four.avg_leaf_refs, one.avg_leaf_refs);
 }

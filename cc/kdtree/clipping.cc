@@ -49,38 +49,62 @@ AABB BoxOf(const V* pts, int count, bool outward) {
   return box;
 }
 
+// Box of the float vertices (exact: no rounding).
+AABB BoxOfVertices(const Vec3* const* pts, int count) {
+  AABB box;
+  for (int i = 0; i < count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      box.lo[k] = std::min(box.lo[k], (*pts[i])[k]);
+      box.hi[k] = std::max(box.hi[k], (*pts[i])[k]);
+    }
+  }
+  return box;
+}
+
+// Each side's box is the box of its vertices of the triangle and of the cut
+// points, which both sides share: the cut points are computed and rounded
+// once (min and max do not depend on the order of the points), and the
+// triangle's own vertices, floats already, need no rounding. `sorted` and
+// `verts` are the same three vertices by coordinate on `axis`.
 template <typename T, typename V>
-ClipCase ClipImpl(const V* sorted, ClipCase kind, int axis, T pos, bool outward,
-                  const AABB& ref_box, AABB* left, AABB* right) {
+ClipCase ClipImpl(const V* sorted, const Vec3* const* verts, ClipCase kind, int axis, T pos,
+                  bool outward, const AABB& ref_box, AABB* left, AABB* right) {
   const V& lo = sorted[0];
   const V& mid = sorted[1];
   const V& hi = sorted[2];
-  V l[4], r[4];
-  int nl = 0, nr = 0;
+  V cut[2];
+  int ncut = 0;
+  AABB lbox, rbox;  // the triangle's vertices on each side
   switch (kind) {
     case ClipCase::kMiddleOnPlane: {
-      const V i = Cut<T>(lo, hi, axis, pos);
-      l[nl++] = lo, l[nl++] = mid, l[nl++] = i;
-      r[nr++] = hi, r[nr++] = mid, r[nr++] = i;
+      cut[ncut++] = Cut<T>(lo, hi, axis, pos);
+      lbox = BoxOfVertices(verts, 2);
+      const Vec3* const upper[2] = {verts[1], verts[2]};
+      rbox = BoxOfVertices(upper, 2);
       break;
     }
     case ClipCase::kLowAlone: {
-      const V i1 = Cut<T>(lo, mid, axis, pos), i2 = Cut<T>(lo, hi, axis, pos);
-      l[nl++] = lo, l[nl++] = i1, l[nl++] = i2;
-      r[nr++] = mid, r[nr++] = hi, r[nr++] = i1, r[nr++] = i2;
+      cut[ncut++] = Cut<T>(lo, mid, axis, pos);
+      cut[ncut++] = Cut<T>(lo, hi, axis, pos);
+      lbox = BoxOfVertices(verts, 1);
+      rbox = BoxOfVertices(verts + 1, 2);
       break;
     }
     case ClipCase::kHighAlone: {
-      const V i1 = Cut<T>(lo, hi, axis, pos), i2 = Cut<T>(mid, hi, axis, pos);
-      l[nl++] = lo, l[nl++] = mid, l[nl++] = i1, l[nl++] = i2;
-      r[nr++] = hi, r[nr++] = i1, r[nr++] = i2;
+      cut[ncut++] = Cut<T>(lo, hi, axis, pos);
+      cut[ncut++] = Cut<T>(mid, hi, axis, pos);
+      lbox = BoxOfVertices(verts, 2);
+      rbox = BoxOfVertices(verts + 2, 1);
       break;
     }
     case ClipCase::kNotStraddling:
       return kind;
   }
-  *left = Intersect(BoxOf(l, nl, outward), ref_box);
-  *right = Intersect(BoxOf(r, nr, outward), ref_box);
+  const AABB cuts = BoxOf(cut, ncut, outward);
+  lbox.Extend(cuts);
+  rbox.Extend(cuts);
+  *left = Intersect(lbox, ref_box);
+  *right = Intersect(rbox, ref_box);
   // The cut side of each box lies exactly on the plane.
   left->hi[axis] = std::min(left->hi[axis], static_cast<float>(pos));
   right->lo[axis] = std::max(right->lo[axis], static_cast<float>(pos));
@@ -117,11 +141,11 @@ ClipCase ClipTriangle(const Vec3& a, const Vec3& b, const Vec3& c, int axis, flo
   order(v[0], v[1]);
   if (conservative) {
     const DVec sorted[3] = {ToD(*v[0]), ToD(*v[1]), ToD(*v[2])};
-    return ClipImpl<double>(sorted, kind, axis, static_cast<double>(pos), true, ref_box, left,
+    return ClipImpl<double>(sorted, v, kind, axis, static_cast<double>(pos), true, ref_box, left,
                             right);
   }
   const FVec sorted[3] = {ToF(*v[0]), ToF(*v[1]), ToF(*v[2])};
-  return ClipImpl<float>(sorted, kind, axis, pos, false, ref_box, left, right);
+  return ClipImpl<float>(sorted, v, kind, axis, pos, false, ref_box, left, right);
 }
 
 }  // namespace kdtree

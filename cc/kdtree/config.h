@@ -116,7 +116,8 @@ absl::StatusOr<Config> Preset(const std::string& name);
 // "sah-sweep": full SAH with the exact event sweep, clipping and pruning;
 // "sah-hybrid": hybrid binning/sweep, clipping and pruning;
 // "sah-perfect": hybrid with perfect splits, pruning and collapse;
-// "sah-packet": sah-hybrid with the SAH counted in packets of 4 (sahPacket).
+// "sah-packet": sah-hybrid with the SAH counted in packets of 4 (sahPacket)
+//   and K_T 45 (traversalCost; tuned on the render benchmark, config.cc).
 const std::vector<std::string>& ExtraPresetNames();
 // PresetNames() followed by ExtraPresetNames().
 std::vector<std::string> AllPresetNames();
