@@ -12,20 +12,33 @@ namespace {
 
 struct Block {
   void* p;
-  size_t bytes;  // rounded to whole huge pages
+  size_t bytes;     // rounded to whole huge pages
+  size_t resident;  // bytes backed by memory when it was freed (mincore)
 };
 
 // Freed blocks kept for reuse (see "Reuse" in huge_pages.h).
 struct Cache {
   std::mutex mu;
   std::vector<Block> blocks;
-  size_t bytes = 0;
+  size_t bytes = 0;  // resident bytes of `blocks`
   size_t limit = DefaultHugePageCacheLimit();
 };
 
 Cache& TheCache() {
   static Cache* cache = new Cache();  // never destroyed: used until exit
   return *cache;
+}
+
+// Bytes of [p, p + bytes) backed by memory (0 when mincore fails).
+size_t ResidentBytes(void* p, size_t bytes) {
+  const long page = sysconf(_SC_PAGESIZE);
+  if (page <= 0) return 0;
+  const size_t pages = (bytes + static_cast<size_t>(page) - 1) / static_cast<size_t>(page);
+  std::vector<unsigned char> in_core(pages);
+  if (mincore(p, bytes, in_core.data()) != 0) return 0;
+  size_t resident = 0;
+  for (unsigned char c : in_core) resident += c & 1;
+  return resident * static_cast<size_t>(page);
 }
 
 size_t Rounded(size_t bytes) {
@@ -39,7 +52,7 @@ size_t Rounded(size_t bytes) {
 size_t DefaultHugePageCacheLimit() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   if (pages <= 0 || page <= 0) return 0;
-  return static_cast<size_t>(pages) * static_cast<size_t>(page) / 4;
+  return static_cast<size_t>(pages) * static_cast<size_t>(page) / 2;
 }
 
 void SetHugePageCacheLimit(size_t bytes) {
@@ -50,7 +63,7 @@ void SetHugePageCacheLimit(size_t bytes) {
     c.limit = bytes;
     while (c.bytes > c.limit && !c.blocks.empty()) {
       drop.push_back(c.blocks.back());
-      c.bytes -= c.blocks.back().bytes;
+      c.bytes -= c.blocks.back().resident;
       c.blocks.pop_back();
     }
   }
@@ -80,7 +93,7 @@ void* AllocateHugePages(size_t bytes) {
     }
     if (best != c.blocks.size()) {
       void* p = c.blocks[best].p;
-      c.bytes -= c.blocks[best].bytes;
+      c.bytes -= c.blocks[best].resident;
       c.blocks[best] = c.blocks.back();
       c.blocks.pop_back();
       return p;
@@ -103,12 +116,14 @@ void* AllocateHugePages(size_t bytes) {
 void FreeHugePages(void* p, size_t bytes) {
   if (p == nullptr) return;
   const size_t rounded = Rounded(bytes);
-  {
+  // Only memory already backed saves anything; the limit counts that.
+  const size_t resident = ResidentBytes(p, rounded);
+  if (resident > 0) {
     Cache& c = TheCache();
     std::lock_guard<std::mutex> lock(c.mu);
-    if (c.bytes + rounded <= c.limit && c.blocks.size() < kMaxCachedBlocks) {
-      c.blocks.push_back(Block{p, rounded});
-      c.bytes += rounded;
+    if (c.bytes + resident <= c.limit && c.blocks.size() < kMaxCachedBlocks) {
+      c.blocks.push_back(Block{p, rounded, resident});
+      c.bytes += resident;
       return;
     }
   }

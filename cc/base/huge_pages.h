@@ -18,11 +18,18 @@
 // zeroing of the page; on the measured virtual machines that runs at 0.5 to
 // 1.5 GB/s, 10 to 30 times slower than writing memory already backed, so a
 // build that writes 400 MB of leaf packets spent a third of its time in the
-// kernel's clear_page (perf). Freed blocks are therefore kept, up to a quarter
-// of physical memory (SetHugePageCacheLimit), and handed to the next request
-// they fit (best fit, at most twice the size asked for), as a renderer that rebuilds its tree keeps its memory.
-// A build in a fresh process still pays for fresh pages: benchmarks record
-// every repeat, the first one included (build_bench, kdrt's T_B_runs).
+// kernel's clear_page (perf). Freed blocks are therefore kept, as a renderer
+// that rebuilds its tree keeps its memory, and handed to the next request
+// they fit (best fit, at most twice the size asked for). The limit counts the
+// memory the kept blocks hold (mincore when a block is freed; a block never
+// written is not kept), half of physical memory by default
+// (SetHugePageCacheLimit). It cannot count address space: the builder
+// reserves 8 times what it writes (builder.cc), and a parallel build's 30
+// fragments reserve 12 GB on asian-dragon, which a limit on address space
+// turned away so that every parallel build took fresh pages. A build in a
+// fresh process still pays for
+// fresh pages: benchmarks record every repeat, the first one included
+// (build_bench, kdrt's T_B_runs).
 #ifndef KDTREE_CC_BASE_HUGE_PAGES_H_
 #define KDTREE_CC_BASE_HUGE_PAGES_H_
 
@@ -43,10 +50,11 @@ void* AllocateHugePages(size_t bytes);
 // `bytes` as given to AllocateHugePages.
 void FreeHugePages(void* p, size_t bytes);
 
-// The reuse cache: at most `bytes` of freed blocks are kept (0 = none, every
-// block is freed at once); lowering the limit frees blocks to meet it.
+// The reuse cache: freed blocks holding at most `bytes` of memory are kept
+// (0 = none, every block is freed at once); lowering the limit frees blocks
+// to meet it. HugePageCacheBytes() is the memory the kept blocks hold.
 inline constexpr size_t kMaxCachedBlocks = 256;
-size_t DefaultHugePageCacheLimit();  // a quarter of physical memory
+size_t DefaultHugePageCacheLimit();  // half of physical memory
 void SetHugePageCacheLimit(size_t bytes);
 size_t HugePageCacheBytes();
 

@@ -1,6 +1,7 @@
 #include "cc/base/huge_pages.h"
 
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 
 #include "gtest/gtest.h"
@@ -39,23 +40,28 @@ TEST(HugePages, ImpossibleRequestsThrow) {
   EXPECT_THROW(a.allocate(static_cast<size_t>(-1) / 4), std::bad_alloc);
 }
 
+// A block of `pages` huge pages, every byte written (so all of it is kept).
+void* Written(size_t pages, int value = 1) {
+  void* p = AllocateHugePages(pages * kHugePageBytes);
+  std::memset(p, value, pages * kHugePageBytes);
+  return p;
+}
+
 TEST(HugePages, FreedBlocksAreReusedByRequestsTheyFit) {
-  SetHugePageCacheLimit(DefaultHugePageCacheLimit());
   SetHugePageCacheLimit(0);  // start empty
   SetHugePageCacheLimit(64 * kHugePageBytes);
-  void* big = AllocateHugePages(3 * kHugePageBytes);
-  void* small = AllocateHugePages(kHugePageBytes);
-  static_cast<char*>(big)[0] = 7;
+  void* big = Written(3, 7);
+  void* small = Written(1);
   FreeHugePages(big, 3 * kHugePageBytes);
   FreeHugePages(small, kHugePageBytes);
   EXPECT_EQ(HugePageCacheBytes(), 4 * kHugePageBytes);
   // Best fit: a one-page request takes the one-page block, not the larger.
   EXPECT_EQ(AllocateHugePages(kHugePageBytes / 2), small);
   // A request larger than every kept block gets fresh memory.
-  void* fresh = AllocateHugePages(4 * kHugePageBytes);
+  void* fresh = Written(4);
   EXPECT_NE(fresh, big);
   // A block more than twice the request is left for a larger one.
-  void* other = AllocateHugePages(kHugePageBytes);
+  void* other = Written(1);
   EXPECT_NE(other, big);
   FreeHugePages(other, kHugePageBytes);
   EXPECT_EQ(AllocateHugePages(2 * kHugePageBytes + 1), big);
@@ -70,18 +76,28 @@ TEST(HugePages, FreedBlocksAreReusedByRequestsTheyFit) {
   SetHugePageCacheLimit(DefaultHugePageCacheLimit());
 }
 
-TEST(HugePages, TheLimitBoundsWhatIsKept) {
+TEST(HugePages, TheLimitCountsTheMemoryKept) {
   SetHugePageCacheLimit(0);
-  void* a = AllocateHugePages(2 * kHugePageBytes);
-  FreeHugePages(a, 2 * kHugePageBytes);
+  FreeHugePages(Written(2), 2 * kHugePageBytes);
   EXPECT_EQ(HugePageCacheBytes(), 0u);  // limit 0: freed at once
   SetHugePageCacheLimit(3 * kHugePageBytes);
-  void* b = AllocateHugePages(2 * kHugePageBytes);
-  void* c = AllocateHugePages(2 * kHugePageBytes);
+  // Never written: no memory to save, not kept (and not counted).
+  FreeHugePages(AllocateHugePages(8 * kHugePageBytes), 8 * kHugePageBytes);
+  EXPECT_EQ(HugePageCacheBytes(), 0u);
+  void* b = Written(2);
+  void* c = Written(2);
   FreeHugePages(b, 2 * kHugePageBytes);
   FreeHugePages(c, 2 * kHugePageBytes);  // would exceed the limit: freed
   EXPECT_EQ(HugePageCacheBytes(), 2 * kHugePageBytes);
+  // A large block with one written page counts that page, not its size.
+  void* sparse = AllocateHugePages(16 * kHugePageBytes);
+  static_cast<char*>(sparse)[0] = 1;
+  FreeHugePages(sparse, 16 * kHugePageBytes);
+  EXPECT_GT(HugePageCacheBytes(), 2 * kHugePageBytes);
+  EXPECT_LE(HugePageCacheBytes(), 3 * kHugePageBytes);
   SetHugePageCacheLimit(kHugePageBytes);  // lowering frees to meet it
+  EXPECT_LE(HugePageCacheBytes(), kHugePageBytes);
+  SetHugePageCacheLimit(0);
   EXPECT_EQ(HugePageCacheBytes(), 0u);
   SetHugePageCacheLimit(DefaultHugePageCacheLimit());
 }
