@@ -55,19 +55,30 @@ size_t DefaultHugePageCacheLimit() {
   return static_cast<size_t>(pages) * static_cast<size_t>(page) / 2;
 }
 
-void SetHugePageCacheLimit(size_t bytes) {
+namespace {
+// Frees kept blocks until they hold at most `keep` bytes.
+void Trim(size_t keep) {
   Cache& c = TheCache();
   std::vector<Block> drop;
   {
     std::lock_guard<std::mutex> lock(c.mu);
-    c.limit = bytes;
-    while (c.bytes > c.limit && !c.blocks.empty()) {
+    while (c.bytes > keep && !c.blocks.empty()) {
       drop.push_back(c.blocks.back());
       c.bytes -= c.blocks.back().resident;
       c.blocks.pop_back();
     }
   }
   for (const Block& b : drop) std::free(b.p);
+}
+}  // namespace
+
+void SetHugePageCacheLimit(size_t bytes) {
+  {
+    Cache& c = TheCache();
+    std::lock_guard<std::mutex> lock(c.mu);
+    c.limit = bytes;
+  }
+  Trim(bytes);
 }
 
 size_t HugePageCacheBytes() {
@@ -102,8 +113,7 @@ void* AllocateHugePages(size_t bytes) {
   void* p = std::aligned_alloc(kHugePageBytes, rounded);
   if (p == nullptr) {
     // Memory the cache holds may be what is missing: give it back and retry.
-    SetHugePageCacheLimit(0);
-    SetHugePageCacheLimit(DefaultHugePageCacheLimit());
+    Trim(0);
     p = std::aligned_alloc(kHugePageBytes, rounded);
     if (p == nullptr) throw std::bad_alloc();
   }
