@@ -147,18 +147,23 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   const BruteForce bf(*soup);
 
   // Extra trees: the preset with an environment file on top.
-  std::vector<std::pair<std::string, std::unique_ptr<KdTree>>> env_trees;
-  std::vector<std::unique_ptr<KdTreeTracer>> env_tracers;
+  struct EnvTree {
+    std::string name;  // env:<file name>
+    std::unique_ptr<KdTree> tree;
+    std::unique_ptr<KdTreeTracer> tracer;
+  };
+  std::vector<EnvTree> env_trees;
   for (const std::string& path : std::vector<std::string>(
            absl::StrSplit(absl::GetFlag(FLAGS_envs), ',', absl::SkipEmpty()))) {
     absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, *config);
     if (!env.ok()) return env.status();
     absl::StatusOr<KdTree> t = BuildKdTree(*soup, env->config);
     if (!t.ok()) return t.status();
-    const size_t slash = path.find_last_of('/');
-    env_trees.emplace_back(absl::StrCat("env:", slash == std::string::npos ? path : path.substr(slash + 1)),
-                           std::make_unique<KdTree>(*std::move(t)));
-    env_tracers.push_back(std::make_unique<KdTreeTracer>(*env_trees.back().second));
+    EnvTree e;
+    e.name = absl::StrCat("env:", path.substr(path.find_last_of('/') + 1));  // npos + 1 == 0
+    e.tree = std::make_unique<KdTree>(*std::move(t));
+    e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
+    env_trees.push_back(std::move(e));
   }
 
   std::vector<std::string> variants = absl::StrSplit(absl::GetFlag(FLAGS_variants), ',');
@@ -174,7 +179,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
   }
-  for (size_t i = 0; i < env_trees.size(); ++i) proto.emplace_back(env_trees[i].first, env_tracers[i].get());
+  for (const EnvTree& e : env_trees) proto.emplace_back(e.name, e.tracer.get());
 
   // Validation (untimed).
   RenderOptions ropt;

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cassert>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <utility>
 #include <vector>

@@ -30,7 +30,7 @@ struct FVec {
 };
 FVec ToF(const Vec3& p) { return {{p.x, p.y, p.z}}; }
 
-// Box of up to four points; double points are rounded outward to float.
+// Box of the cut points (up to two); double points are rounded outward to float.
 template <typename V>
 AABB BoxOf(const V* pts, int count, bool outward) {
   AABB box;
@@ -79,8 +79,7 @@ ClipCase ClipImpl(const V* sorted, const Vec3* const* verts, ClipCase kind, int 
     case ClipCase::kMiddleOnPlane: {
       cut[ncut++] = Cut<T>(lo, hi, axis, pos);
       lbox = BoxOfVertices(verts, 2);
-      const Vec3* const upper[2] = {verts[1], verts[2]};
-      rbox = BoxOfVertices(upper, 2);
+      rbox = BoxOfVertices(verts + 1, 2);
       break;
     }
     case ClipCase::kLowAlone: {
