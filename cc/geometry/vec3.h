@@ -42,10 +42,14 @@ inline Vec3 Normalize(const Vec3& a) {
   return len > 0 ? a / len : a;
 }
 
-// std::fmin / std::fmax on floats (a NaN operand yields the other one), inline:
-// GCC calls libm for them, a function call per box coordinate in the builders.
+// std::fmin / std::fmax (a NaN operand yields the other one), inline: GCC calls
+// libm for them, a function call per box coordinate in the builders and
+// several per watertight hit test. (Signed zeros may come out either way, as
+// std::fmin / std::fmax allow; the callers compare or take magnitudes only.)
 inline float FMin(float a, float b) { return (b < a || a != a) ? b : a; }
 inline float FMax(float a, float b) { return (b > a || a != a) ? b : a; }
+inline double FMin(double a, double b) { return (b < a || a != a) ? b : a; }
+inline double FMax(double a, double b) { return (b > a || a != a) ? b : a; }
 
 inline Vec3 Min(const Vec3& a, const Vec3& b) {
   return {FMin(a.x, b.x), FMin(a.y, b.y), FMin(a.z, b.z)};

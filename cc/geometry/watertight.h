@@ -118,9 +118,9 @@ inline bool Finish(const WatertightRay& r, double e0, double e1, double e2, cons
   if (!(tt <= tmax && tt < std::numeric_limits<float>::infinity())) return false;
   // Bounds on the rounding of the sheared coordinates and of the edge
   // functions (PBRT 3rd ed. 3.9.6).
-  const double max_x = std::fmax(std::fabs(x[0]), std::fmax(std::fabs(x[1]), std::fabs(x[2])));
-  const double max_y = std::fmax(std::fabs(y[0]), std::fmax(std::fabs(y[1]), std::fabs(y[2])));
-  const double max_z = std::fmax(std::fabs(z[0]), std::fmax(std::fabs(z[1]), std::fabs(z[2])));
+  const double max_x = FMax(std::fabs(x[0]), FMax(std::fabs(x[1]), std::fabs(x[2])));
+  const double max_y = FMax(std::fabs(y[0]), FMax(std::fabs(y[1]), std::fabs(y[2])));
+  const double max_z = FMax(std::fabs(z[0]), FMax(std::fabs(z[1]), std::fabs(z[2])));
   const double delta_x = Gamma(5) * (max_x + max_abs_kz);
   const double delta_y = Gamma(5) * (max_y + max_abs_kz);
   const double delta_e = 2 * (Gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
@@ -134,10 +134,10 @@ inline bool Finish(const WatertightRay& r, double e0, double e1, double e2, cons
   // always does) t is compared with tmin outside the bound on its rounding
   // error (PBRT 3rd ed. 3.9.6), and decided exactly inside it.
   const double delta_z = Gamma(3) * max_z;
-  if (std::fmin(z[0], std::fmin(z[1], z[2])) > delta_z) {
+  if (FMin(z[0], FMin(z[1], z[2])) > delta_z) {
     if (!(tt > tmin)) return false;
   } else {
-    const double max_e = std::fmax(std::fabs(e0), std::fmax(std::fabs(e1), std::fabs(e2)));
+    const double max_e = FMax(std::fabs(e0), FMax(std::fabs(e1), std::fabs(e2)));
     const double delta_t =
         3 * (Gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::fabs(inv_det);
     if (double(tt) <= tmin - delta_t) return false;
@@ -182,7 +182,7 @@ inline bool IntersectTriangleWatertight(const WatertightRay& r, const Vec3& a, c
     return false;
   }
   const float z[3] = {r.sz * az, r.sz * bz, r.sz * cz};
-  const float max_abs_kz = std::fmax(std::fabs(az), std::fmax(std::fabs(bz), std::fabs(cz)));
+  const float max_abs_kz = FMax(std::fabs(az), FMax(std::fabs(bz), std::fabs(cz)));
   constexpr float kMax = std::numeric_limits<float>::max();
   if (e0 != 0.0f && e1 != 0.0f && e2 != 0.0f && std::fabs(e0) <= kMax && std::fabs(e1) <= kMax &&
       std::fabs(e2) <= kMax) {

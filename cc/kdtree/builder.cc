@@ -22,11 +22,25 @@
 #include "cc/kdtree/ref_pool.h"
 #include "cc/kdtree/sah_cost.h"
 #include "cc/kdtree/sweep_sah.h"
+#include "tbb/parallel_for.h"
 #include "tbb/task_arena.h"
 #include "tbb/task_group.h"
 
 namespace kdtree {
 namespace {
+
+// Runs f(chunk, begin, end) over kSetupChunks equal chunks of [0, n), on the
+// arena's threads when `parallel`.
+constexpr size_t kSetupChunks = 64;
+template <class F>
+void ForChunks(size_t n, bool parallel, const F& f) {
+  const auto run = [&](size_t c) { f(c, c * n / kSetupChunks, (c + 1) * n / kSetupChunks); };
+  if (parallel) {
+    tbb::parallel_for(size_t{0}, kSetupChunks, run);
+  } else {
+    for (size_t c = 0; c < kSetupChunks; ++c) run(c);
+  }
+}
 
 const AABB kEverywhere(Vec3(-INFINITY, -INFINITY, -INFINITY), Vec3(INFINITY, INFINITY, INFINITY));
 
@@ -70,18 +84,27 @@ class Builder {
 
   bool overflow() const { return overflow_; }
 
-  absl::Status Run() {
+  // The whole tree; `parallel`: the first references are made by the
+  // arena's threads (each chunk's box, then their union: min and max are
+  // exact, so the root box does not depend on the chunks).
+  absl::Status Run(bool parallel) {
     const size_t n = soup_.size();
     tree_->nodes.reserve(kReserveFactor * n + 1);
     tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);  // the shared list of every empty leaf
     pool_.Reserve(kReserveFactor * n + 1);
     BuildRef* first = pool_.Reserved(n);
+    std::vector<AABB> chunk_box(kSetupChunks);
+    ForChunks(n, parallel, [&](size_t chunk, size_t begin, size_t end) {
+      AABB box;
+      for (size_t i = begin; i < end; ++i) {
+        first[i] = BuildRef{soup_.Bounds(i), static_cast<uint32_t>(i)};
+        box.Extend(first[i].box);
+      }
+      chunk_box[chunk] = box;
+    });
     AABB root;
-    for (size_t i = 0; i < n; ++i) {
-      first[i] = BuildRef{soup_.Bounds(i), static_cast<uint32_t>(i)};
-      root.Extend(first[i].box);
-    }
+    for (const AABB& b : chunk_box) root.Extend(b);
     pool_.Resize(n);
     tree_->bounds = root;
     Recurse(0, n, root, 0);
@@ -311,7 +334,7 @@ class Builder {
   }
 
   void MakeLeaf(uint32_t node, const BuildRef* leaf_refs, size_t n, const AABB& box) {
-    HugeVector<uint32_t>& refs = tree_->refs;
+    HugeBuffer<uint32_t>& refs = tree_->refs;
     const size_t offset = refs.size();
     refs.push_back(0);
     uint32_t count = 0;
@@ -374,11 +397,6 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   const auto start = std::chrono::steady_clock::now();
   KdTree tree;
   tree.config = config;
-  tree.tris.reserve(soup.size());
-  for (size_t i = 0; i < soup.size(); ++i) {
-    tree.tris.push_back(MakeTriAccel(soup.a(i), soup.b(i), soup.c(i)));
-  }
-  tree.verts.assign(soup.v.begin(), soup.v.end());
   const int threads = config.build_threads == 0
                           ? tbb::this_task_arena::max_concurrency()
                           : config.build_threads;
@@ -386,9 +404,19 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   Builder builder(soup, config, &root, EffectiveMaxDepth(config, soup.size()),
                   threads > 1 ? ParallelDepth(threads) : 0);
   absl::Status status;
-  // The arena's threads build, then lay out the leaves (leaf_layout.h).
+  // The arena's threads set up the triangle data and the first references,
+  // build, then lay out the leaves (leaf_layout.h).
   const auto build = [&] {
-    status = builder.Run();
+    const size_t n = soup.size();
+    tree.tris.resize(n);  // HugeBuffers: filled here, not zeroed first
+    tree.verts.resize(soup.v.size());
+    ForChunks(n, threads > 1, [&](size_t, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        tree.tris[i] = MakeTriAccel(soup.a(i), soup.b(i), soup.c(i));
+      }
+      std::copy(soup.v.begin() + 3 * begin, soup.v.begin() + 3 * end, tree.verts.begin() + 3 * begin);
+    });
+    status = builder.Run(threads > 1);
     if (!status.ok()) return;
     tree.bounds = root.tree.bounds;
     if (root.children.empty()) {

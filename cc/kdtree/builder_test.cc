@@ -139,6 +139,10 @@ TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
       ASSERT_EQ(serial.refs.size(), parallel.refs.size()) << name << threads;
       EXPECT_TRUE(SameBytes(serial.nodes, parallel.nodes)) << name << threads;
       EXPECT_TRUE(SameBytes(serial.refs, parallel.refs)) << name << threads;
+      // The triangle data and the root box, set up in parallel chunks.
+      EXPECT_TRUE(SameBytes(serial.tris, parallel.tris)) << name << threads;
+      EXPECT_TRUE(SameBytes(serial.verts, parallel.verts)) << name << threads;
+      EXPECT_EQ(std::memcmp(&serial.bounds, &parallel.bounds, sizeof(AABB)), 0) << name << threads;
       // The leaf layout, filled in parallel too.
       ASSERT_EQ(serial.leaf_nodes.size(), parallel.leaf_nodes.size()) << name << threads;
       ASSERT_EQ(serial.leaf_soa.size(), parallel.leaf_soa.size()) << name << threads;

@@ -56,7 +56,7 @@ class Collapser {
     return info;
   }
 
-  void Emit(uint32_t index, HugeVector<KdNode>* nodes, HugeVector<uint32_t>* refs) const {
+  void Emit(uint32_t index, HugeBuffer<KdNode>* nodes, HugeBuffer<uint32_t>* refs) const {
     const KdNode& n = tree_.nodes[index];
     const size_t at = nodes->size();
     nodes->push_back(KdNode::Leaf(0));
@@ -107,8 +107,8 @@ uint64_t CollapseTree(const Config& config, KdTree* tree) {
   Collapser c(config, *tree);
   c.Analyze(0, tree->bounds);
   if (c.removed() == 0) return 0;
-  HugeVector<KdNode> nodes;
-  HugeVector<uint32_t> refs;
+  HugeBuffer<KdNode> nodes;
+  HugeBuffer<uint32_t> refs;
   nodes.reserve(tree->nodes.size());
   refs.reserve(tree->refs.size());
   refs.push_back(0);

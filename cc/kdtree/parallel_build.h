@@ -9,7 +9,9 @@
 // each fragment equals the serial subtree up to a shift of its node and list
 // indices. The parent keeps one placeholder node per child fragment; when all
 // are done, Stitch() writes nodes and leaf lists once, in the depth-first
-// order (left, then right) in which the serial build writes them.
+// order (left, then right) in which the serial build writes them: it first
+// sizes every fragment's subtree, so each fragment knows where its nodes and
+// lists start, and the fragments are then written at once, as tasks.
 // Subtree parallelism of this kind: Shevtsov, Soupikov & Kapustin, "Highly
 // parallel fast kd-tree construction for interactive ray tracing of dynamic
 // scenes", Eurographics 2007 (their lower levels); upper-level parallelism

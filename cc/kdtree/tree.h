@@ -52,17 +52,19 @@ struct BuildCounters {
   uint64_t pruned() const { return pruned_box + pruned_leaf; }  // N_PR
 };
 
-// The arrays are HugeVectors (cc/base/huge_pages.h): on huge pages when large.
+// The arrays are HugeBuffers (cc/base/huge_pages.h): on huge pages when large,
+// and resize() leaves new elements unwritten (the builders fill them, in
+// parallel where they can).
 struct KdTree {
   Config config;
   AABB bounds;                  // root box: union of the triangles' tight boxes
-  HugeVector<KdNode> nodes;      // nodes[0] is the root
-  HugeVector<uint32_t> refs;     // count-prefixed leaf lists; refs[0] == 0
-  HugeVector<TriAccel> tris;     // per-triangle intersection data, by index
+  HugeBuffer<KdNode> nodes;      // nodes[0] is the root
+  HugeBuffer<uint32_t> refs;     // count-prefixed leaf lists; refs[0] == 0
+  HugeBuffer<TriAccel> tris;     // per-triangle intersection data, by index
   // The triangles' vertices, 3 per triangle (a, b, c as in the soup): the
   // watertight test (cc/geometry/watertight.h) needs the exact shared vertices,
   // which v0 + e1 of TriAccel does not reproduce.
-  HugeVector<Vec3> verts;
+  HugeBuffer<Vec3> verts;
   // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
   // vertices and indices in packets of 4 triangles (structure of arrays, 40
   // words per packet) in leaf_soa; leaf_nodes is `nodes` with each leaf
