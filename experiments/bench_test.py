@@ -40,9 +40,12 @@ class BenchTest(unittest.TestCase):
                     "tracers": {"kd": {"T_R_median": kd}, "embree": {"T_R_median": embree}},
                     "validation": {"brute_force_mismatches": 0, "brute_force_checked": 301,
                                    "embree_disagreements": {"total": 3}}}
-        text = bench.render_summary([rec(1, 0.2, 0.1), rec(2, 0.1, 0.05)])
+        one = rec(1, 0.2, 0.1)
+        one["ratio_kd_over_embree"] = {"kd": {"median": 0.5, "min": 0.5, "paired": 0.55}}
+        text = bench.render_summary([one, rec(2, 0.1, 0.05)])
         row = text.splitlines()[2]
-        self.assertIn("| 0.50 | - | 2.00x | 2.00x |", row)
+        self.assertIn("| 0.50 | 0.55 | - | 2.00x | 2.00x |", row)
+        self.assertIn("Paired kd/Embree over 1 rows: median 0.55", text)
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
 

@@ -20,7 +20,12 @@
 // with every tracer, in an order that rotates per round, so load from other
 // processes on the machine falls on all tracers alike. Embree's device has the
 // same thread count. Per tracer: every run's T_R, the median and the minimum,
-// and all rays per second; ratios kd/Embree of the medians and of the minima.
+// all rays per second, and first_over_this_paired, the median over rounds of
+// (the first tracer's T_R / this one's) in the same round; ratios kd/Embree of
+// the medians, of the minima, and paired (per round, then the median). Two
+// identical trees (an --envs file that changes nothing) differed by up to 14 %
+// in their medians on one scene and 4 % in the median over six: rounds of one
+// process ran up to 30 % apart, so compare paired ratios over several scenes.
 // One JSON line per (scene, threads) is appended to --out.
 //
 // Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
@@ -78,6 +83,15 @@ ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout o
 
 namespace kdtree {
 namespace {
+
+// Median over rounds of a[r] / b[r]: times taken in the same round, so a slow
+// stretch of the machine (whole rounds 30 % slower, seen on the measured VMs)
+// falls on both.
+double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> r;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) r.push_back(a[i] / b[i]);
+  return r.empty() ? 0.0 : Median(r);
+}
 
 
 struct Entry {
@@ -242,11 +256,13 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       absl::StrAppend(&tracers, tracers.empty() ? "" : ", ",
                       absl::StrFormat("%s: {\"T_R_runs\": %s, \"T_R_median\": %s, \"T_R_min\": %s, "
                                       "\"mrays_per_s_median\": %s, \"primary_s_median\": %s, "
-                                      "\"secondary_s_median\": %s}",
+                                      "\"secondary_s_median\": %s, "
+                                      "\"first_over_this_paired\": %s}",
                                       JsonQuote(e.name), JsonNumberArray(e.runs), JsonNumber(Median(e.runs)),
                                       JsonNumber(*std::min_element(e.runs.begin(), e.runs.end())),
                                       JsonNumber(e.rays / Median(e.runs) / 1e6),
-                                      JsonNumber(Median(e.primary)), JsonNumber(Median(e.secondary))));
+                                      JsonNumber(Median(e.primary)), JsonNumber(Median(e.secondary)),
+                                      JsonNumber(PairedRatio(entries[0].runs, e.runs))));
     }
     std::string ratios;
     if (use_embree) {
@@ -255,10 +271,11 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
         const Entry& e = entries[k];
         absl::StrAppend(
             &ratios, ratios.empty() ? "" : ", ",
-            absl::StrFormat("%s: {\"median\": %s, \"min\": %s}", JsonQuote(e.name),
-                            JsonNumber(Median(em.runs) / Median(e.runs)),
+            absl::StrFormat("%s: {\"median\": %s, \"min\": %s, \"paired\": %s}",
+                            JsonQuote(e.name), JsonNumber(Median(em.runs) / Median(e.runs)),
                             JsonNumber(*std::min_element(em.runs.begin(), em.runs.end()) /
-                                       *std::min_element(e.runs.begin(), e.runs.end()))));
+                                       *std::min_element(e.runs.begin(), e.runs.end())),
+                            JsonNumber(PairedRatio(em.runs, e.runs))));
       }
     }
     const std::string line = absl::StrFormat(
