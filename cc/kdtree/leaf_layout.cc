@@ -1,9 +1,9 @@
 #include "cc/kdtree/leaf_layout.h"
 
+#include <emmintrin.h>
 #include <xmmintrin.h>
 
 #include <algorithm>
-#include <cstring>
 #include <vector>
 
 #include "tbb/blocked_range.h"
@@ -18,10 +18,13 @@ constexpr size_t kChunkNodes = 16384;
 
 uint32_t PacketsOf(uint32_t count) { return (count + kPacketLanes - 1) / kPacketLanes; }
 
-// Writes the packets of leaf `node` (count > 0) at `out`. A packet's 36
-// vertex floats are the transpose of its 4 triangles' 9 floats each (float f
-// of lane l at f * 4 + l): two 4x4 transposes and a column, with zero rows
-// for padding lanes.
+// Writes the packets of leaf `node` (count > 0) at `out` (16-byte aligned). A
+// packet's 36 vertex floats are the transpose of its 4 triangles' 9 floats
+// each (float f of lane l at f * 4 + l): two 4x4 transposes and a column,
+// with zero rows for padding lanes. Non-temporal stores: the packets (hundreds
+// of megabytes on the large scenes) are written whole and not read back by
+// the build, so they bypass the caches and skip the read of each line before
+// it is written (the caller fences).
 void WriteLeaf(const KdTree& tree, const KdNode& node, float* out) {
   static_assert(kPacketLanes == 4 && kPacketIds == 36, "the transpose below is 4 x 9");
   static_assert(sizeof(Vec3) == 3 * sizeof(float), "a triangle is 9 packed floats");
@@ -44,13 +47,14 @@ void WriteLeaf(const KdTree& tree, const KdNode& node, float* out) {
       __m128 r2 = _mm_loadu_ps(row[2] + 4 * half), r3 = _mm_loadu_ps(row[3] + 4 * half);
       _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
       float* o = out + 16 * half;
-      _mm_storeu_ps(o + 0, r0);
-      _mm_storeu_ps(o + 4, r1);
-      _mm_storeu_ps(o + 8, r2);
-      _mm_storeu_ps(o + 12, r3);
+      _mm_stream_ps(o + 0, r0);
+      _mm_stream_ps(o + 4, r1);
+      _mm_stream_ps(o + 8, r2);
+      _mm_stream_ps(o + 12, r3);
     }
-    for (int lane = 0; lane < kPacketLanes; ++lane) out[32 + lane] = row[lane][8];
-    std::memcpy(out + kPacketIds, id, sizeof(id));
+    _mm_stream_ps(out + 32, _mm_setr_ps(row[0][8], row[1][8], row[2][8], row[3][8]));
+    _mm_stream_si128(reinterpret_cast<__m128i*>(out + kPacketIds),
+                     _mm_load_si128(reinterpret_cast<const __m128i*>(id)));
   }
 }
 
@@ -108,6 +112,7 @@ void LayoutLeafTriangles(KdTree* tree, bool parallel) {
       WriteLeaf(*tree, node, tree->leaf_soa.data() + next * kPacketFloats);
       next += PacketsOf(count);
     }
+    _mm_sfence();  // the streaming stores of WriteLeaf are seen before the chunk ends
   });
 }
 

@@ -212,8 +212,10 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
           const Vec3 b(packet[3 * 4 + l], packet[4 * 4 + l], packet[5 * 4 + l]);
           const Vec3 c(packet[6 * 4 + l], packet[7 * 4 + l], packet[8 * 4 + l]);
           float t, u, v;
+          // Any hit: best holds no hit yet (the first one returns), and a hit
+          // with t <= best.t = tmax is always Closer.
           if (IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v) &&
-              Closer(t, tri, best)) {
+              (kAnyHit || Closer(t, tri, best))) {
             best.tri = tri;
             best.t = t;
             best.u = u;
@@ -244,7 +246,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
         } else {
           hit = IntersectTriangle(ray, tree.tris[tri], ray.tmin, best.t, &t, &u, &v);
         }
-        if (hit && Closer(t, tri, best)) {
+        if (hit && (kAnyHit || Closer(t, tri, best))) {
           best.tri = tri;
           best.t = t;
           best.u = u;
@@ -261,7 +263,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
         return best;
       }
       const StackEntry& e = stack[--top];
-      if (best.hit() && e.t_entry > best.t + slack) continue;
+      if (!kAnyHit && best.hit() && e.t_entry > best.t + slack) continue;
       index = e.node;
       t_entry = e.t_entry;
       t_exit = e.t_exit;
