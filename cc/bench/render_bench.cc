@@ -25,7 +25,7 @@
 // the medians, of the minima, and paired (per round, then the median). Two
 // identical trees (an --envs file that changes nothing) differed by up to 14 %
 // in their medians on one scene and 4 % in the median over six: rounds of one
-// process ran up to 30 % apart, so compare paired ratios over several scenes.
+// process ran up to 34 % apart, so compare paired ratios over several scenes.
 // One JSON line per (scene, threads) is appended to --out.
 //
 // Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
@@ -85,14 +85,13 @@ namespace kdtree {
 namespace {
 
 // Median over rounds of a[r] / b[r]: times taken in the same round, so a slow
-// stretch of the machine (whole rounds 30 % slower, seen on the measured VMs)
+// stretch of the machine (whole rounds up to 34 % slower on the measured VMs)
 // falls on both.
 double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> r;
   for (size_t i = 0; i < a.size() && i < b.size(); ++i) r.push_back(a[i] / b[i]);
   return r.empty() ? 0.0 : Median(r);
 }
-
 
 struct Entry {
   Entry(std::string n, const Tracer* t) : name(std::move(n)), tracer(t) {}
