@@ -27,9 +27,8 @@
 // reserves 8 times what it writes (builder.cc), and a parallel build's 30
 // fragments reserve 12 GB on asian-dragon, which a limit on address space
 // turned away so that every parallel build took fresh pages. A build in a
-// fresh process still pays for
-// fresh pages: benchmarks record every repeat, the first one included
-// (build_bench, kdrt's T_B_runs).
+// fresh process still pays for fresh pages: benchmarks record every repeat,
+// the first one included (build_bench, kdrt's T_B_runs).
 #ifndef KDTREE_CC_BASE_HUGE_PAGES_H_
 #define KDTREE_CC_BASE_HUGE_PAGES_H_
 

@@ -52,12 +52,7 @@ AABB BoxOf(const V* pts, int count, bool outward) {
 // Box of the float vertices (exact: no rounding).
 AABB BoxOfVertices(const Vec3* const* pts, int count) {
   AABB box;
-  for (int i = 0; i < count; ++i) {
-    for (int k = 0; k < 3; ++k) {
-      box.lo[k] = std::min(box.lo[k], (*pts[i])[k]);
-      box.hi[k] = std::max(box.hi[k], (*pts[i])[k]);
-    }
-  }
+  for (int i = 0; i < count; ++i) box.Extend(*pts[i]);
   return box;
 }
 

@@ -169,11 +169,12 @@ absl::StatusOr<Config> Preset(const std::string& name) {
     s.split_method = Config::SplitMethod::kHybrid;
     if (name == "sah-hybrid") return s;
     if (name == "sah-packet") {
-      // K_T 45 (K_I 20): tuned with render_bench --envs, three interleaved
-      // sweeps of K_T 10-90 on 8 scenes. Against Wald & Havran's 15 it
-      // rendered 1.06x as fast as a median, most on the hairballs and the
-      // forest (1.1-1.2x); a leaf of up to 4 references costs one packet
-      // test, so a step down the tree is worth about two of them.
+      // K_T 45 (K_I 20): tuned with render_bench --envs, sweeps of K_T 10-90
+      // on 8 scenes, re-checked with paired ratios (per round, 7 rounds, a
+      // control tree at 0.999): K_T 15 renders at 0.95x of K_T 45's speed,
+      // 30 at 1.01x (a plateau with 45), 60 at 0.98x. A leaf of up to 4
+      // references costs one packet test, so a step down the tree is worth
+      // about two of them.
       s.sah_packet = 4;
       s.traversal_cost = 45.0;
       return s;
