@@ -82,10 +82,10 @@ def render_summary(records):
     for r in records:
         rows.setdefault((r["scene"], r["n_tri"], r["preset"]), {})[r["threads"]] = r
     out = ["| scene | triangles | preset | kd T_R, 1 thread | Embree T_R | kd/Embree "
-           "| paired | with mailbox | kd 2-thread speed-up | Embree 2-thread speed-up "
-           "| validation |",
-           "|---|---|---|---|---|---|---|---|---|---|---|"]
-    ratios, best, paired_all = [], [], []
+           "| paired | with mailbox | packets: kd/Embree, paired | kd 2-thread speed-up "
+           "| Embree 2-thread speed-up | validation |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    ratios, best, paired_all, packet_all = [], [], [], []
     for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         one, two = by_t.get(1), by_t.get(2)
         if one is None:
@@ -99,6 +99,10 @@ def render_summary(records):
         paired = one.get("ratio_kd_over_embree", {}).get("kd", {}).get("paired")
         if paired is not None:
             paired_all.append(paired)
+        # Packets of 2x2 pixels on both sides (kd_packet over embree_packet).
+        packet = (one.get("ratio_kd_over_embree_packet") or {}).get("kd_packet", {}).get("paired")
+        if packet is not None:
+            packet_all.append(packet)
         if ratio is not None:
             ratios.append(ratio)
             best.append(max(ratio, mb_ratio or 0))
@@ -111,13 +115,14 @@ def render_summary(records):
 
         v = one["validation"]
         d = v.get("embree_disagreements") or {}
-        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %d/%d brute-force "
+        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %d/%d brute-force "
                    "mismatches, %s Embree disagreements |" % (
                        scene, format(n, ","), preset, kd["T_R_median"],
                        "%.4f s" % emb["T_R_median"] if emb else "-",
                        "%.2f" % ratio if ratio is not None else "-",
                        "%.2f" % paired if paired is not None else "-",
                        "%.2f" % mb_ratio if mb_ratio is not None else "-",
+                       "%.2f" % packet if packet is not None else "-",
                        speed("kd"), speed("embree"), v["brute_force_mismatches"],
                        v["brute_force_checked"], d.get("total", "-")))
     if ratios:
@@ -133,6 +138,10 @@ def render_summary(records):
                    "or more." % (len(paired_all), statistics.median(paired_all),
                                  min(paired_all), max(paired_all),
                                  sum(p >= 0.7 for p in paired_all)))
+    if packet_all:
+        out.append("Packets of 2x2 pixels, paired kd_packet/embree_packet over %d rows: median "
+                   "%.2f, range %.2f to %.2f." % (len(packet_all), statistics.median(packet_all),
+                                                  min(packet_all), max(packet_all)))
     return "\n".join(out)
 
 
@@ -146,7 +155,7 @@ def main(argv=None):
     p.add_argument("--build_presets", default=BUILD_PRESETS)
     p.add_argument("--render_min_tris", type=int, default=50000)
     p.add_argument("--render_preset", default="sah-packet")
-    p.add_argument("--render_variants", default="kd,kd_mailbox")
+    p.add_argument("--render_variants", default="kd,kd_mailbox,kd_packet")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")

@@ -30,7 +30,11 @@
 //
 // Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
 // layout: vertices read by triangle index, the traversal before the layout),
-// "kd_mailbox" (leaf layout and mailboxing, traversal.h). --envs adds one
+// "kd_mailbox" (leaf layout and mailboxing, traversal.h), "kd_packet" (kd's
+// tree, primary and shadow rays in packets of 2x2 pixels, RenderOptions::packets,
+// cc/kdtree/ray_packet.h); Embree likewise as "embree" (rtcIntersect1 /
+// rtcOccluded1) and "embree_packet" (rtcIntersect4 / rtcOccluded4), with
+// ratios of every kd tracer to each. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
 // kd traversal in the same rounds: constants are tuned on the same rays and
 // under the same load, and every such tree must give kd's exact hits.
@@ -72,13 +76,16 @@ ABSL_FLAG(std::string, threads, "1,2", "Comma-separated thread counts.");
 ABSL_FLAG(int, tile, 16, "Tile side for threads > 1 (renderer.h; 0 = whole rows).");
 ABSL_FLAG(int, repeats, 5, "Timed rounds per thread count (each renders every tracer once).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
-ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox",
-          "kd-tree variants to time: kd, kd_index, kd_mailbox.");
+ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet",
+          "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet.");
 ABSL_FLAG(std::string, envs, "",
           "Comma-separated environment files (env_file.h), each applied on top of --preset to "
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
           "a tree's constants on the same rays; its image must equal kd's).");
 ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
+ABSL_FLAG(bool, embree_packets, true,
+          "Also time Embree with packets of 2x2 pixels (rtcIntersect4 / rtcOccluded4) as "
+          "tracer embree_packet, the bar for kd_packet.");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
 
 namespace kdtree {
@@ -94,9 +101,11 @@ double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 struct Entry {
-  Entry(std::string n, const Tracer* t) : name(std::move(n)), tracer(t) {}
+  Entry(std::string n, const Tracer* t, bool p = false)
+      : name(std::move(n)), tracer(t), packets(p) {}
   std::string name;
   const Tracer* tracer;
+  bool packets;  // RenderOptions::packets
   std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
   uint64_t rays = 0;
 };
@@ -188,6 +197,8 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       proto.emplace_back(v, &kd_index);
     } else if (v == "kd_mailbox") {
       proto.emplace_back(v, &kd_mailbox);
+    } else if (v == "kd_packet") {
+      proto.emplace_back(v, &kd, true);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
@@ -205,6 +216,19 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
     const uint64_t bad = ExactMismatches(recorded.rays, *e.tracer);
     absl::StrAppend(&variant_json, variant_json.empty() ? "" : ", ", JsonQuote(e.name), ": ", bad);
     if (bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd on ", bad, " rays"));
+    if (e.packets) {
+      // Packets: every primary hit bit for bit, the shadow count and the image.
+      RenderOptions po = ropt;
+      po.packets = true;
+      const RenderResult r = Render(*soup, *e.tracer, view, po);
+      uint64_t differ = r.s_hit != recorded.s_hit || r.rgb != recorded.rgb;
+      for (size_t p = 0; p < r.primary_hits.size(); ++p) {
+        const Hit& a = r.primary_hits[p];
+        const Hit& b = recorded.primary_hits[p];
+        differ += !(a.tri == b.tri && a.t == b.t && a.u == b.u && a.v == b.v);
+      }
+      if (differ != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " packets differ from kd"));
+    }
   }
   uint64_t checked = 0;
   const uint64_t bf_bad =
@@ -230,7 +254,9 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       embree = *std::move(e);
       disagree = CompareTracers(recorded.rays, *soup, kd, *embree).ToJson();
       entries.emplace_back("embree", embree.get());
+      if (absl::GetFlag(FLAGS_embree_packets)) entries.emplace_back("embree_packet", embree.get(), true);
     }
+    const size_t n_kd = proto.size();  // entries[0, n_kd) are kd-trees
     RenderOptions topt = ropt;
     topt.threads = threads;
     topt.tile_size = absl::GetFlag(FLAGS_tile);
@@ -238,7 +264,9 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
     for (int round = 0; round < repeats; ++round) {
       for (size_t k = 0; k < entries.size(); ++k) {
         Entry& e = entries[(k + round) % entries.size()];
-        const RenderResult r = Render(*soup, *e.tracer, view, topt);
+        RenderOptions o = topt;
+        o.packets = e.packets;
+        const RenderResult r = Render(*soup, *e.tracer, view, o);
         // kd-tree variants must reproduce the validated image exactly (Embree
         // may differ on grazing rays: its disagreements are reported above).
         if (e.tracer != embree.get() && r.rgb != recorded.rgb) {
@@ -263,30 +291,37 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
                                       JsonNumber(Median(e.primary)), JsonNumber(Median(e.secondary)),
                                       JsonNumber(PairedRatio(entries[0].runs, e.runs))));
     }
-    std::string ratios;
-    if (use_embree) {
-      const Entry& em = entries.back();
-      for (size_t k = 0; k + 1 < entries.size(); ++k) {
+    // Ratios of each kd-tree tracer to Embree's single rays and, when timed,
+    // to its packets.
+    const auto ratios_to = [&](const Entry& em) {
+      std::string out;
+      for (size_t k = 0; k < n_kd; ++k) {
         const Entry& e = entries[k];
         absl::StrAppend(
-            &ratios, ratios.empty() ? "" : ", ",
+            &out, out.empty() ? "" : ", ",
             absl::StrFormat("%s: {\"median\": %s, \"min\": %s, \"paired\": %s}",
                             JsonQuote(e.name), JsonNumber(Median(em.runs) / Median(e.runs)),
                             JsonNumber(*std::min_element(em.runs.begin(), em.runs.end()) /
                                        *std::min_element(e.runs.begin(), e.runs.end())),
                             JsonNumber(PairedRatio(em.runs, e.runs))));
       }
-    }
+      return out;
+    };
+    std::string ratios, packet_ratios;
+    if (use_embree) ratios = ratios_to(entries[n_kd]);
+    if (entries.size() > n_kd + 1) packet_ratios = ratios_to(entries[n_kd + 1]);
     const std::string line = absl::StrFormat(
         "{\"bench\": \"render\", \"scene\": %s, \"n_tri\": %d, \"preset\": %s, \"threads\": %d, \"tile\": %d, "
         "\"repeats\": %d, \"rays\": %d, \"primary\": %d, \"shadow\": %d, \"ao\": %d, "
         "\"leaf_layout_bytes\": %d, \"tracers\": {%s}, \"ratio_kd_over_embree\": {%s}, "
+        "\"ratio_kd_over_embree_packet\": {%s}, \"embree_native_ray4\": %s, "
         "\"validation\": {\"variants_vs_kd_mismatches\": {%s}, \"brute_force_checked\": %d, "
         "\"brute_force_mismatches\": %d, \"embree_disagreements\": %s}}",
         JsonQuote(scene), soup->size(), JsonQuote(absl::GetFlag(FLAGS_preset)), threads,
         topt.tile_size, repeats,
         recorded.total_rays(), recorded.primary.rays, recorded.shadow.rays, recorded.ao.rays,
-        LeafLayoutBytes(*tree), tracers, ratios, variant_json, checked, bf_bad, disagree);
+        LeafLayoutBytes(*tree), tracers, ratios, packet_ratios,
+        embree != nullptr && embree->native_ray4() ? "true" : "false", variant_json, checked, bf_bad, disagree);
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
     if (out != nullptr) {

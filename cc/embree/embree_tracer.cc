@@ -62,6 +62,7 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Triangl
   }
   std::string error;
   rtcSetDeviceErrorFunction(t->device_, OnError, &error);
+  t->native_ray4_ = rtcGetDeviceProperty(t->device_, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) != 0;
 
   t->scene_ = rtcNewScene(t->device_);
   rtcSetSceneBuildQuality(t->scene_, ToRtc(options.quality));
@@ -146,6 +147,62 @@ bool EmbreeTracer::Occluded(const Ray& ray) const {
   r.flags = 0;
   rtcOccluded1(scene_, &ctx, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();
+}
+
+namespace {
+
+// The rays of lanes i < n in a packet of 4; `valid` -1 for them, 0 for the rest.
+void FillRay4(const Ray* rays, int n, int* valid, RTCRay4* r) {
+  for (int i = 0; i < 4; ++i) {
+    const Ray ray = i < n ? rays[i] : Ray{{0, 0, 0}, {1, 0, 0}};
+    valid[i] = i < n ? -1 : 0;
+    r->org_x[i] = ray.origin.x;
+    r->org_y[i] = ray.origin.y;
+    r->org_z[i] = ray.origin.z;
+    r->tnear[i] = ray.tmin;
+    r->dir_x[i] = ray.dir.x;
+    r->dir_y[i] = ray.dir.y;
+    r->dir_z[i] = ray.dir.z;
+    r->time[i] = 0.0f;
+    r->tfar[i] = ray.tmax;
+    r->mask[i] = 0xffffffffu;
+    r->id[i] = i;
+    r->flags[i] = 0;
+  }
+}
+
+}  // namespace
+
+void EmbreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(16) int valid[4];
+  RTCRayHit4 rh;
+  FillRay4(rays, n, valid, &rh.ray);
+  for (int i = 0; i < 4; ++i) {
+    rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect4(valid, scene_, &ctx, &rh);
+  for (int i = 0; i < n; ++i) {
+    hits[i] = Hit();
+    if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
+      hits[i].tri = rh.hit.primID[i];
+      hits[i].t = rh.ray.tfar[i];
+      hits[i].u = rh.hit.u[i];
+      hits[i].v = rh.hit.v[i];
+    }
+  }
+}
+
+void EmbreeTracer::OccludedPacket(const Ray* rays, int n, bool* occluded) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  alignas(16) int valid[4];
+  RTCRay4 r;
+  FillRay4(rays, n, valid, &r);
+  rtcOccluded4(valid, scene_, &ctx, &r);
+  for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] == -std::numeric_limits<float>::infinity();
 }
 
 }  // namespace kdtree

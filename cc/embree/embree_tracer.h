@@ -50,6 +50,13 @@ class EmbreeTracer : public Tracer {
   std::string name() const override { return "embree"; }
   Hit Intersect(const Ray& ray) const override;
   bool Occluded(const Ray& ray) const override;
+  // rtcIntersect4 / rtcOccluded4 on the valid lanes (Embree's packet kernels,
+  // or its emulation by single rays where the library has no native ray4).
+  void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
+  void OccludedPacket(const Ray* rays, int n, bool* occluded) const override;
+  // Whether the library traces ray4 packets natively
+  // (RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED).
+  bool native_ray4() const { return native_ray4_; }
 
   // Wall time of rtcCommitScene.
   double build_seconds() const { return build_seconds_; }
@@ -59,6 +66,7 @@ class EmbreeTracer : public Tracer {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_seconds_ = 0;
+  bool native_ray4_ = false;
 };
 
 }  // namespace kdtree

@@ -1,5 +1,7 @@
 #include "cc/embree/embree_tracer.h"
 
+#include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "cc/kdtree/brute_force.h"
@@ -74,6 +76,41 @@ TEST(EmbreeTracer, AgreesWithBruteForceOnRandomRays) {
   }
   EXPECT_GT(hits, 5000);
   EXPECT_LT(grazing_only, 10);
+}
+
+// Embree's packet queries against its single-ray ones, on packets of 2x2
+// camera rays and of 1 to 4 random rays. Its packet and single-ray kernels
+// are separate code, so a grazing ray may differ: allowed on a few rays only.
+TEST(EmbreeTracer, PacketsAgreeWithSingleRays) {
+  const TriangleSoup soup = testing::BumpySphere(3, 9);
+  absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, EmbreeOptions());
+  ASSERT_TRUE(embree.ok()) << embree.status();
+  std::printf("native ray4: %d\n", (*embree)->native_ray4());
+  const std::vector<Ray> cam = testing::CameraRays(soup, 64, 64);
+  std::vector<Ray> rays;
+  for (int y = 0; y < 64; y += 2) {
+    for (int x = 0; x < 64; x += 2) {
+      for (int i : {0, 1, 64, 65}) rays.push_back(cam[y * 64 + x + i]);
+    }
+  }
+  const std::vector<Ray> random = testing::RandomRays(soup, 4000, 5);
+  rays.insert(rays.end(), random.begin(), random.end());
+  int hits = 0, differ = 0;
+  for (size_t k = 0; k < rays.size(); k += 4) {
+    const int n = k < cam.size() ? 4 : 1 + static_cast<int>(k / 4 % 4);
+    Hit got[4];
+    bool occ[4];
+    (*embree)->IntersectPacket(&rays[k], n, got);
+    (*embree)->OccludedPacket(&rays[k], n, occ);
+    for (int i = 0; i < n; ++i) {
+      const Hit want = (*embree)->Intersect(rays[k + i]);
+      hits += want.hit();
+      differ += !(got[i].tri == want.tri && got[i].t == want.t) ||
+                occ[i] != (*embree)->Occluded(rays[k + i]);
+    }
+  }
+  EXPECT_GT(hits, 2000);
+  EXPECT_LE(differ, 5);
 }
 
 TEST(EmbreeTracer, QualityNames) {

@@ -1,4 +1,5 @@
 #include "cc/kdtree/ray_setup.h"
+#include "cc/kdtree/ray_setup4.h"
 
 #include <cmath>
 #include <cstdint>
@@ -93,6 +94,59 @@ TEST(RaySetup, SimdEqualsScalarBitForBit) {
   EXPECT_GT(hits, 50000);
   EXPECT_LT(hits, compared - 50000);
   EXPECT_GT(simd, 200000);
+}
+
+// SetUpRays4's lane i against SetUpRay on ray i: the same answer, and every
+// field bit for bit where the ray reaches the box.
+TEST(RaySetup, FourLanesEqualOneRayBitForBit) {
+  std::mt19937 rng(20261202);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  int groups = 0, hits = 0;
+  for (int g = 0; g < 100000; ++g) {
+    AABB box;
+    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+    if (g % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    Ray rays[4];
+    bool ok = true;
+    for (int i = 0; i < 4 && ok; ++i) {
+      Ray& ray = rays[i];
+      ray.origin = g % 3 == 0 ? Vec3(unit(rng), unit(rng), unit(rng)) * 2.0f
+                              : Vec3(Wild(rng), Wild(rng), Wild(rng));
+      ray.dir = g % 5 == 0 ? Vec3(unit(rng), unit(rng), unit(rng))
+                           : Vec3(Wild(rng), Wild(rng), Wild(rng));
+      ray.tmin = (g + i) % 4 == 0 ? -1.0f : 0.0f;
+      ray.tmax = (g + i) % 6 == 0 ? 3.0f : INFINITY;
+      ok = SanitizeRay(&ray) && ray.dir.x != 0 && ray.dir.y != 0 && ray.dir.z != 0;
+    }
+    if (!ok) continue;
+    ++groups;
+    RaySetup4 four;
+    const int live = SetUpRays4(rays, box, &four);
+    for (int i = 0; i < 4; ++i) {
+      RaySetup one;
+      ASSERT_EQ(SetUpRay(rays[i], box, &one), (live >> i & 1) != 0) << g;
+      if (!(live >> i & 1)) continue;
+      ++hits;
+      RaySetup lane;
+      for (int k = 0; k < 3; ++k) {
+        lane.org[k] = four.org[k][i];
+        lane.inv[k] = four.inv[k][i];
+        lane.tol[k] = four.tol[k][i];
+        lane.negative[k] = four.negative[i][k];
+      }
+      lane.delta = four.delta[i];
+      lane.t_entry = four.t_entry[i];
+      lane.t_exit = four.t_exit[i];
+      lane.slack = four.slack[i];
+      lane.wray = four.wray[i];
+      ExpectSame(lane, one, g);
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+  EXPECT_GT(groups, 20000);
+  EXPECT_GT(hits, 10000);
+  EXPECT_LT(hits, 4 * groups - 10000);
 }
 
 }  // namespace

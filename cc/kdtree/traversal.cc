@@ -7,6 +7,7 @@
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/packet_reject.h"
 #include "cc/kdtree/ray_setup.h"
 
 #include <immintrin.h>
@@ -69,32 +70,6 @@ inline bool WatertightRejects(const WatertightRay& r, const Vec3& a, const Vec3&
   const float e1 = x0 * y2 - y0 * x2;
   const float e2 = x1 * y0 - y1 * x0;
   return (e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f);
-}
-
-// WatertightRejects for the 4 triangles of a packet (leaf_layout.h) at once:
-// bit l set when lane l is certainly rejected. SSE single precision performs
-// the very same IEEE operations in the same order as the scalar code (no
-// contraction: -ffp-contract=off), so each lane decides exactly as
-// WatertightRejects would.
-inline int RejectMask4(const WatertightRay& r, const float* packet) {
-  const __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
-  const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
-  __m128 x[3], y[3];
-  for (int v = 0; v < 3; ++v) {
-    const float* p = packet + 3 * v * kPacketLanes;
-    const __m128 z = _mm_sub_ps(_mm_loadu_ps(p + r.kz * kPacketLanes), oz);
-    x[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.kx * kPacketLanes), ox), _mm_mul_ps(sx, z));
-    y[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.ky * kPacketLanes), oy), _mm_mul_ps(sy, z));
-  }
-  const __m128 e0 = _mm_sub_ps(_mm_mul_ps(x[2], y[1]), _mm_mul_ps(y[2], x[1]));
-  const __m128 e1 = _mm_sub_ps(_mm_mul_ps(x[0], y[2]), _mm_mul_ps(y[0], x[2]));
-  const __m128 e2 = _mm_sub_ps(_mm_mul_ps(x[1], y[0]), _mm_mul_ps(y[1], x[0]));
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
-                               _mm_cmplt_ps(e2, zero));
-  const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
-                               _mm_cmpgt_ps(e2, zero));
-  return _mm_movemask_ps(_mm_and_ps(neg, pos));
 }
 
 template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox>

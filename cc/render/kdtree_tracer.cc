@@ -1,8 +1,11 @@
 #include "cc/render/kdtree_tracer.h"
 
+#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 
 namespace kdtree {
+
+static_assert(kTracerPacket == kRayPacketSize, "renderer packets are the traversal's");
 
 Hit KdTreeTracer::Intersect(const Ray& ray) const {
   return ::kdtree::Intersect(tree_, ray, options_);
@@ -10,6 +13,14 @@ Hit KdTreeTracer::Intersect(const Ray& ray) const {
 
 bool KdTreeTracer::Occluded(const Ray& ray) const {
   return ::kdtree::Occluded(tree_, ray, options_);
+}
+
+void KdTreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
+  ::kdtree::IntersectPacket(tree_, rays, n, hits, options_);
+}
+
+void KdTreeTracer::OccludedPacket(const Ray* rays, int n, bool* occluded) const {
+  ::kdtree::OccludedPacket(tree_, rays, n, occluded, options_);
 }
 
 }  // namespace kdtree

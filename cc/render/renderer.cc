@@ -52,24 +52,28 @@ uint64_t Sum(const std::vector<uint64_t>& v) {
   return s;
 }
 
-// Sum of f(y, x0, x1) over row segments covering the image [0, w) x [0, h):
-// whole rows in order for one thread; whole rows in parallel when `rows` (the
-// recorded rays are kept per row); else square tiles of side `tile` in
-// parallel (Wald, Slusallek, Benthin & Wagner, "Interactive rendering with
-// coherent ray tracing", CGF 20(3), 2001: tiles keep neighbouring rays, which
-// visit the same nodes, on one core). Every count is an integer written by one
-// task and summed afterwards, so results never depend on the schedule.
+// Sum of f(y0, y1, x0, x1) over the image [0, w) x [0, h) cut into bands of
+// `band` rows (the last band of a tile may be shorter): whole rows in order
+// for one thread; whole rows in parallel when `rows` (the recorded rays are
+// kept per row); else square tiles of side `tile` in parallel (Wald,
+// Slusallek, Benthin & Wagner, "Interactive rendering with coherent ray
+// tracing", CGF 20(3), 2001: tiles keep neighbouring rays, which visit the
+// same nodes, on one core). Every count is an integer written by one task and
+// summed afterwards, so results never depend on the schedule.
 template <typename F>
-uint64_t ForPixels(int w, int h, int threads, int tile, bool rows, const F& f) {
+uint64_t ForBands(int w, int h, int threads, int tile, bool rows, int band, const F& f) {
   if (threads <= 1) {
     uint64_t sum = 0;
-    for (int y = 0; y < h; ++y) sum += f(y, 0, w);
+    for (int y = 0; y < h; y += band) sum += f(y, std::min(h, y + band), 0, w);
     return sum;
   }
   if (rows || tile <= 0) {
-    std::vector<uint64_t> counts(h);
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int y = r.begin(); y < r.end(); ++y) counts[y] = f(y, 0, w);
+    const int nb = (h + band - 1) / band;
+    std::vector<uint64_t> counts(nb);
+    tbb::parallel_for(tbb::blocked_range<int>(0, nb, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int b = r.begin(); b < r.end(); ++b) {
+        counts[b] = f(b * band, std::min(h, (b + 1) * band), 0, w);
+      }
     });
     return Sum(counts);
   }
@@ -80,11 +84,28 @@ uint64_t ForPixels(int w, int h, int threads, int tile, bool rows, const F& f) {
       const int x0 = (t % nx) * tile, y0 = (t / nx) * tile;
       const int x1 = std::min(w, x0 + tile), y1 = std::min(h, y0 + tile);
       uint64_t c = 0;
-      for (int y = y0; y < y1; ++y) c += f(y, x0, x1);
+      for (int y = y0; y < y1; y += band) c += f(y, std::min(y1, y + band), x0, x1);
       counts[t] = c;
     }
   });
   return Sum(counts);
+}
+
+// ForBands over single rows: f(y, x0, x1).
+template <typename F>
+uint64_t ForPixels(int w, int h, int threads, int tile, bool rows, const F& f) {
+  return ForBands(w, h, threads, tile, rows, 1,
+                  [&](int y, int, int x0, int x1) { return f(y, x0, x1); });
+}
+
+// The pixels of the 2x2 block at (x, y0) clipped to [x, x1) x [y0, y1), in
+// row-major order; returns how many (1 to 4).
+int BlockPixels(int w, int y0, int y1, int x, int x1, size_t* pixels) {
+  int n = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int xx = x; xx < x + 2 && xx < x1; ++xx) pixels[n++] = static_cast<size_t>(y) * w + xx;
+  }
+  return n;
 }
 
 void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* out) {
@@ -121,39 +142,96 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   std::vector<std::vector<RayRecord>> rows(record ? h : 0);
   const Clock::time_point start = Clock::now();
 
+  // Packets of 2x2 pixels (RenderOptions::packets); never when recording.
+  const bool packets = options.packets && !record;
+  const auto pixel_ray = [&](size_t p) {
+    return camera.PrimaryRay(static_cast<int>(p % w), static_cast<int>(p / w));
+  };
+
   // 1. Primary rays.
   Clock::time_point t0 = Clock::now();
-  res.p_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
-    {
+  if (packets) {
+    res.p_hit = ForBands(w, h, threads, tile, false, 2, [&](int y0, int y1, int x0, int x1) {
       uint64_t hits = 0;
-      for (int x = x0; x < x1; ++x) {
-        const size_t p = static_cast<size_t>(y) * w + x;
-        const Ray ray = camera.PrimaryRay(x, y);
-        const Hit hit = tracer.Intersect(ray);
-        res.primary_hits[p] = hit;
-        hits += hit.hit();
-        if (record) {
-          RayRecord rec = MakeRecord(ray, RayKind::kPrimary, static_cast<uint32_t>(p), 0);
-          rec.hit = hit.hit();
-          if (hit.hit()) {
-            rec.tri = hit.tri;
-            rec.t = hit.t;
-            rec.u = hit.u;
-            rec.v = hit.v;
-          }
-          rows[y].push_back(rec);
+      for (int x = x0; x < x1; x += 2) {
+        size_t pix[kTracerPacket];
+        Ray rays[kTracerPacket];
+        Hit out[kTracerPacket];
+        const int n = BlockPixels(w, y0, y1, x, x1, pix);
+        for (int i = 0; i < n; ++i) rays[i] = pixel_ray(pix[i]);
+        tracer.IntersectPacket(rays, n, out);
+        for (int i = 0; i < n; ++i) {
+          res.primary_hits[pix[i]] = out[i];
+          hits += out[i].hit();
         }
       }
       return hits;
-    }
-  });
+    });
+  } else {
+    res.p_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
+      {
+        uint64_t hits = 0;
+        for (int x = x0; x < x1; ++x) {
+          const size_t p = static_cast<size_t>(y) * w + x;
+          const Ray ray = camera.PrimaryRay(x, y);
+          const Hit hit = tracer.Intersect(ray);
+          res.primary_hits[p] = hit;
+          hits += hit.hit();
+          if (record) {
+            RayRecord rec = MakeRecord(ray, RayKind::kPrimary, static_cast<uint32_t>(p), 0);
+            rec.hit = hit.hit();
+            if (hit.hit()) {
+              rec.tri = hit.tri;
+              rec.t = hit.t;
+              rec.u = hit.u;
+              rec.v = hit.v;
+            }
+            rows[y].push_back(rec);
+          }
+        }
+        return hits;
+      }
+    });
+  }
   res.primary.seconds = Seconds(t0);
   res.primary.rays = pixels;
   res.p_miss = pixels - res.p_hit;
   if (record) Append(&rows, &res.rays);
 
   // 2. Shadow rays: one per primary hit and light.
-  if (shadows) {
+  if (shadows && packets) {
+    // Per 2x2 block and light, the shadow rays of the block's hits together.
+    t0 = Clock::now();
+    res.s_hit = ForBands(w, h, threads, tile, false, 2, [&](int y0, int y1, int x0, int x1) {
+      uint64_t blocked = 0;
+      for (int x = x0; x < x1; x += 2) {
+        size_t pix[kTracerPacket], lit[kTracerPacket];
+        const int m = BlockPixels(w, y0, y1, x, x1, pix);
+        SurfacePoint sp[kTracerPacket];
+        int n = 0;
+        for (int i = 0; i < m; ++i) {
+          const Hit& hit = res.primary_hits[pix[i]];
+          if (!hit.hit()) continue;
+          sp[n] = MakeSurfacePoint(soup, pixel_ray(pix[i]), hit);
+          lit[n++] = pix[i];
+        }
+        for (int l = 0; l < n_lights && n > 0; ++l) {
+          Ray rays[kTracerPacket];
+          bool occ[kTracerPacket];
+          for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], view.lights[l].position);
+          tracer.OccludedPacket(rays, n, occ);
+          for (int i = 0; i < n; ++i) {
+            occluded[lit[i] * n_lights + l] = occ[i];
+            blocked += occ[i];
+          }
+        }
+      }
+      return blocked;
+    });
+    res.shadow.seconds = Seconds(t0);
+    res.shadow.rays = res.p_hit * n_lights;
+    res.s_miss = res.shadow.rays - res.s_hit;
+  } else if (shadows) {
     t0 = Clock::now();
     res.s_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
       {

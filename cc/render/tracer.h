@@ -9,6 +9,8 @@
 
 namespace kdtree {
 
+inline constexpr int kTracerPacket = 4;
+
 class Tracer {
  public:
   virtual ~Tracer() = default;
@@ -21,6 +23,16 @@ class Tracer {
   virtual Hit Intersect(const Ray& ray) const = 0;
   // True when some triangle is hit with ray.tmin < t <= ray.tmax.
   virtual bool Occluded(const Ray& ray) const = 0;
+
+  // The same queries for a packet of n <= kTracerPacket rays (the renderer's
+  // 2x2 pixel blocks, RenderOptions::packets). Each result must be what the
+  // single-ray query gives for that ray. Default: one ray at a time.
+  virtual void IntersectPacket(const Ray* rays, int n, Hit* hits) const {
+    for (int i = 0; i < n; ++i) hits[i] = Intersect(rays[i]);
+  }
+  virtual void OccludedPacket(const Ray* rays, int n, bool* occluded) const {
+    for (int i = 0; i < n; ++i) occluded[i] = Occluded(rays[i]);
+  }
 };
 
 }  // namespace kdtree

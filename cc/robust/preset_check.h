@@ -51,7 +51,9 @@ void ParallelFor(size_t n, const std::function<void(size_t, size_t)>& body);
 std::vector<Hit> BruteForceHits(const TriangleSoup& soup, const std::vector<Ray>& rays,
                                 IntersectionMode mode);
 
-// One tree against a precomputed reference.
+// One tree against a precomputed reference: the single-ray queries, and the
+// packet traversal (cc/kdtree/ray_packet.h) on consecutive groups of 4 rays;
+// a ray mismatches when either differs.
 CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
                       const std::vector<Hit>& reference, IntersectionMode mode);
 

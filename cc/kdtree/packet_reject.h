@@ -1,0 +1,42 @@
+// The watertight test's common rejection for the 4 triangles of a leaf
+// packet (cc/kdtree/leaf_layout.h) at once, shared by the single-ray and the
+// packet traversal (traversal.cc, ray_packet.cc).
+#ifndef KDTREE_CC_KDTREE_PACKET_REJECT_H_
+#define KDTREE_CC_KDTREE_PACKET_REJECT_H_
+
+#include "cc/geometry/watertight.h"
+#include "cc/kdtree/leaf_layout.h"
+
+#include <immintrin.h>
+
+namespace kdtree {
+
+// Bit l set when packet lane l is certainly rejected by the watertight test
+// (its three edge functions have definitely different signs). SSE single
+// precision performs the very IEEE operations of IntersectTriangleWatertight
+// (watertight.h) in the same order (no contraction: -ffp-contract=off), so a
+// clear bit means that test decides exactly as without this step.
+inline int RejectMask4(const WatertightRay& r, const float* packet) {
+  const __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
+  const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
+  __m128 x[3], y[3];
+  for (int v = 0; v < 3; ++v) {
+    const float* p = packet + 3 * v * kPacketLanes;
+    const __m128 z = _mm_sub_ps(_mm_loadu_ps(p + r.kz * kPacketLanes), oz);
+    x[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.kx * kPacketLanes), ox), _mm_mul_ps(sx, z));
+    y[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.ky * kPacketLanes), oy), _mm_mul_ps(sy, z));
+  }
+  const __m128 e0 = _mm_sub_ps(_mm_mul_ps(x[2], y[1]), _mm_mul_ps(y[2], x[1]));
+  const __m128 e1 = _mm_sub_ps(_mm_mul_ps(x[0], y[2]), _mm_mul_ps(y[0], x[2]));
+  const __m128 e2 = _mm_sub_ps(_mm_mul_ps(x[1], y[0]), _mm_mul_ps(y[1], x[0]));
+  const __m128 zero = _mm_setzero_ps();
+  const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)),
+                               _mm_cmplt_ps(e2, zero));
+  const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
+                               _mm_cmpgt_ps(e2, zero));
+  return _mm_movemask_ps(_mm_and_ps(neg, pos));
+}
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_PACKET_REJECT_H_

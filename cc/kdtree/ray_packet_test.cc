@@ -1,0 +1,231 @@
+// The packet traversal (ray_packet.h) against the single-ray traversal, bit
+// for bit (triangle, t, u, v and any hit), and against brute force, for every
+// preset on scenes with shared edges, split planes through vertices, slivers
+// and a flat box. Packets: 2x2 camera blocks (coherent), rays from one point
+// with jittered directions, random rays forced to the same direction signs
+// (divergent lanes), axis-parallel rays with origins in split planes, and
+// packets with invalid rays or fewer than 4 rays.
+#include "cc/kdtree/ray_packet.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/config.h"
+#include "cc/kdtree/test_scenes.h"
+#include "cc/kdtree/traversal.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+bool Bitwise(const Hit& a, const Hit& b) {
+  return a.tri == b.tri && std::memcmp(&a.t, &b.t, sizeof(float)) == 0 &&
+         std::memcmp(&a.u, &b.u, sizeof(float)) == 0 &&
+         std::memcmp(&a.v, &b.v, sizeof(float)) == 0;
+}
+
+struct PacketSet {
+  std::vector<Ray> rays;  // packets of kRayPacketSize consecutive rays...
+  std::vector<int> sizes;  // ...of which the first sizes[k] are traced
+};
+
+void AddPacket(PacketSet* s, const std::vector<Ray>& rays) {
+  std::vector<Ray> r = rays;
+  s->sizes.push_back(static_cast<int>(r.size()));
+  r.resize(kRayPacketSize);
+  s->rays.insert(s->rays.end(), r.begin(), r.end());
+}
+
+PacketSet MakePackets(const TriangleSoup& soup, uint32_t seed) {
+  PacketSet s;
+  const AABB box = soup.Bounds();
+  const Vec3 ext = box.Extent();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  auto point = [&](float margin) {
+    return Vec3(box.lo.x - margin * ext.x + (1 + 2 * margin) * ext.x * unit(rng),
+                box.lo.y - margin * ext.y + (1 + 2 * margin) * ext.y * unit(rng),
+                box.lo.z - margin * ext.z + (1 + 2 * margin) * ext.z * unit(rng));
+  };
+  // 2x2 blocks of a 48x48 camera.
+  const int side = 48;
+  const std::vector<Ray> cam = testing::CameraRays(soup, side, side);
+  for (int y = 0; y < side; y += 2) {
+    for (int x = 0; x < side; x += 2) {
+      AddPacket(&s, {cam[y * side + x], cam[y * side + x + 1], cam[(y + 1) * side + x],
+                     cam[(y + 1) * side + x + 1]});
+    }
+  }
+  // One origin, jittered directions towards a random point.
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 o = point(0.3f), target = point(0.0f);
+    std::vector<Ray> p;
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      const Vec3 jitter(0.02f * (unit(rng) - 0.5f), 0.02f * (unit(rng) - 0.5f),
+                        0.02f * (unit(rng) - 0.5f));
+      p.push_back(Ray{o, target - o + jitter * Length(ext)});
+    }
+    AddPacket(&s, p);
+  }
+  // Random origins and directions with one shared sign pattern (lanes diverge).
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 sign(unit(rng) < 0.5f ? -1.0f : 1.0f, unit(rng) < 0.5f ? -1.0f : 1.0f,
+                    unit(rng) < 0.5f ? -1.0f : 1.0f);
+    std::vector<Ray> p;
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      const Vec3 d(sign.x * (0.01f + unit(rng)), sign.y * (0.01f + unit(rng)),
+                   sign.z * (0.01f + unit(rng)));
+      p.push_back(Ray{point(0.2f), d});
+    }
+    AddPacket(&s, p);
+  }
+  // Axis-parallel rays (a +0 or -0 component) from origins on vertex
+  // coordinates, which are split planes of many trees.
+  for (int k = 0; k < 300; ++k) {
+    const int zero_axis = k % 3;
+    const float zero = (k / 3) % 2 ? -0.0f : 0.0f;
+    std::vector<Ray> p;
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      const size_t v = rng() % soup.v.size();
+      Vec3 o = point(0.1f);
+      o[zero_axis] = soup.v[v][zero_axis];
+      if (l == 1) o[(zero_axis + 1) % 3] = soup.v[v][(zero_axis + 1) % 3];
+      Vec3 d(0.3f + unit(rng), 0.3f + unit(rng), 0.3f + unit(rng));
+      for (int a = 0; a < 3; ++a) d[a] = (soup.v[v][a] >= o[a] ? 1.0f : -1.0f) * d[a];
+      d[zero_axis] = zero;
+      p.push_back(Ray{o, d});
+    }
+    // One sign pattern for the packet path: copy lane 0's signs.
+    for (int l = 1; l < kRayPacketSize; ++l) {
+      for (int a = 0; a < 3; ++a) p[l].dir[a] = std::copysign(p[l].dir[a], p[0].dir[a]);
+    }
+    AddPacket(&s, p);
+  }
+  // Fewer than 4 rays; invalid rays among valid ones; a bounded interval.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int k = 0; k < 100; ++k) {
+    const Vec3 o = point(0.3f), target = point(0.0f);
+    std::vector<Ray> p;
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      p.push_back(Ray{o, target - o + Vec3(0.01f * l, 0.0f, 0.0f) * Length(ext)});
+    }
+    if (k % 4 == 0) p[1].dir = Vec3(nan, 1, 1);
+    if (k % 4 == 1) { p[2].tmin = 1.0f; p[2].tmax = 0.5f; }
+    if (k % 4 == 2) p[0].dir = Vec3(0, 0, 0);
+    if (k % 4 == 3) { p[3].tmin = 0.4f; p[3].tmax = 0.6f; }
+    p.resize(1 + k % kRayPacketSize);
+    AddPacket(&s, p);
+  }
+  return s;
+}
+
+struct Counts {
+  size_t packets = 0, packet_path = 0, closest = 0, any = 0, brute = 0, hits = 0;
+};
+
+Counts Check(const TriangleSoup& soup, const KdTree& tree, const PacketSet& s) {
+  const BruteForce bf(soup);
+  Counts c;
+  for (size_t k = 0; k < s.sizes.size(); ++k) {
+    const Ray* rays = &s.rays[k * kRayPacketSize];
+    const int n = s.sizes[k];
+    Hit hits[kRayPacketSize];
+    bool occ[kRayPacketSize];
+    IntersectPacket(tree, rays, n, hits);
+    OccludedPacket(tree, rays, n, occ);
+    ++c.packets;
+    c.packet_path += PacketPathApplies(tree, rays, n);
+    for (int i = 0; i < n; ++i) {
+      const Hit single = Intersect(tree, rays[i]);
+      c.closest += !Bitwise(hits[i], single);
+      c.any += occ[i] != Occluded(tree, rays[i]);
+      const Hit ref = bf.Intersect(rays[i]);
+      c.brute += !(hits[i].tri == ref.tri && (!ref.hit() || hits[i].t == ref.t));
+      c.hits += ref.hit();
+    }
+  }
+  return c;
+}
+
+class PacketVsSingle : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TriangleSoup SceneNamed(const std::string& name) {
+  if (name == "sphere") return testing::BumpySphere(4, 1);
+  if (name == "voxels") return testing::VoxelGrid(10, 6, 10, 2);
+  if (name == "thin") return testing::ThinSoup(2000, 3);
+  return testing::FlatScene(1500, 4);
+}
+
+TEST_P(PacketVsSingle, EveryLaneIsTheSingleRayResult) {
+  const auto& [scene, preset] = GetParam();
+  const TriangleSoup soup = SceneNamed(scene);
+  absl::StatusOr<Config> config = Preset(preset);
+  ASSERT_TRUE(config.ok()) << config.status();
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  const PacketSet s = MakePackets(soup, 7);
+  const Counts c = Check(soup, *tree, s);
+  EXPECT_EQ(c.closest, 0u);
+  EXPECT_EQ(c.any, 0u);
+  EXPECT_EQ(c.brute, 0u);
+  // The packet path must really run (camera blocks, shared signs), and there
+  // must be hits to compare.
+  EXPECT_GT(c.packet_path, c.packets / 2) << c.packet_path << " of " << c.packets;
+  EXPECT_GT(c.hits, 100u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllPresets, PacketVsSingle,
+    ::testing::Combine(::testing::Values("sphere", "voxels", "thin", "flat"),
+                       ::testing::ValuesIn(AllPresetNames())),
+    [](const auto& info) {
+      std::string n = std::get<0>(info.param) + "_" + std::get<1>(info.param);
+      for (char& ch : n) {
+        if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      }
+      return n;
+    });
+
+TEST(RayPacket, FallsBackWithoutLeafLayoutOrWithMixedSigns) {
+  const TriangleSoup soup = testing::BumpySphere(3, 2);
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, Config());
+  ASSERT_TRUE(tree.ok());
+  // A 2x2 block in a corner of an 8x8 camera: the same direction signs.
+  const std::vector<Ray> all = testing::CameraRays(soup, 8, 8);
+  const std::vector<Ray> cam = {all[0], all[1], all[8], all[9]};
+  EXPECT_TRUE(PacketPathApplies(*tree, cam.data(), 4));
+  TraversalOptions mailbox;
+  mailbox.mailbox = true;
+  EXPECT_FALSE(PacketPathApplies(*tree, cam.data(), 4, mailbox));
+  // From inside the sphere (so every ray reaches the tree), one x sign differs.
+  const Vec3 c = (soup.Bounds().lo + soup.Bounds().hi) * 0.5f;
+  const std::vector<Ray> mixed = {Ray{c, {1, 1, 1}}, Ray{c, {1, 2, 1}}, Ray{c, {1, 1, 2}},
+                                  Ray{c, {-1, 1, 1}}};
+  EXPECT_FALSE(PacketPathApplies(*tree, mixed.data(), 4));
+  KdTree index_tree = *tree;
+  HugeBuffer<float>().swap(index_tree.leaf_soa);
+  HugeBuffer<KdNode>().swap(index_tree.leaf_nodes);
+  EXPECT_FALSE(PacketPathApplies(index_tree, cam.data(), 4));
+  // Results are the single-ray ones on every path.
+  for (const KdTree* t : {&*tree, &index_tree}) {
+    for (const std::vector<Ray>* rays : {&cam, &mixed}) {
+      Hit hits[4];
+      bool occ[4];
+      IntersectPacket(*t, rays->data(), 4, hits);
+      OccludedPacket(*t, rays->data(), 4, occ);
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_TRUE(Bitwise(hits[i], Intersect(*t, (*rays)[i])));
+        EXPECT_EQ(occ[i], Occluded(*t, (*rays)[i]));
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kdtree
