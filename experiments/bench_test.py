@@ -9,9 +9,12 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench  # noqa: E402
 
 
-def build_record(threads, runs, n=2000000):
-    return {"scene": "big", "n_tri": n, "preset": "binning-32", "threads": threads,
-            "T_B": sorted(runs)[len(runs) // 2], "T_B_runs": runs}
+def build_record(threads, runs, n=2000000, warmup=None):
+    r = {"scene": "big", "n_tri": n, "preset": "binning-32", "threads": threads,
+         "T_B": sorted(runs)[len(runs) // 2], "T_B_runs": runs}
+    if warmup is not None:
+        r["T_B_warmup_runs"] = warmup
+    return r
 
 
 class BenchTest(unittest.TestCase):
@@ -27,12 +30,12 @@ class BenchTest(unittest.TestCase):
                              ["c", "a"])
 
     def test_build_summary_gives_throughput_and_speed_up(self):
-        text = bench.build_summary([build_record(1, [1.0, 0.8, 1.2]),
-                                    build_record(2, [0.5, 0.6, 0.4])])
+        text = bench.build_summary([build_record(1, [1.0, 0.8, 1.2], warmup=[1.5]),
+                                    build_record(2, [0.5, 0.6, 0.4], warmup=[0.7])])
         row = text.splitlines()[2]
         self.assertIn("1.000 s (0.800), 2.00 (2.50)", row)  # median, fastest; Mtri/s
         self.assertIn("0.500 s (0.400), 4.00 (5.00)", row)
-        self.assertTrue(row.endswith("| 2.00x |"))
+        self.assertTrue(row.endswith("| 2.00x | 1.500 s / 0.700 s |"))
 
     def test_render_summary_gives_ratio_to_embree(self):
         def rec(threads, kd, embree):
