@@ -254,41 +254,38 @@ void Trace(const KdTree& tree, const Packet& p, Hit* best) {
   }
 }
 
+// Prepares the packet; false when the packet path does not apply (the rays
+// are then traced one by one).
+bool PreparePacket(const KdTree& tree, const Ray* rays, int n, const TraversalOptions& options,
+                   Packet* p) {
+  if (!TreeSupportsPackets(tree, options)) return false;
+  Prepare(tree, rays, n, p);
+  return p->same_signs;
+}
+
 }  // namespace
 
 bool PacketPathApplies(const KdTree& tree, const Ray* rays, int n,
                        const TraversalOptions& options) {
-  if (!TreeSupportsPackets(tree, options)) return false;
   Packet p;
-  Prepare(tree, rays, n, &p);
-  return p.same_signs;
+  return PreparePacket(tree, rays, n, options, &p);
 }
 
 void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
                      const TraversalOptions& options) {
-  for (int i = 0; i < n; ++i) hits[i] = Hit();
-  if (!TreeSupportsPackets(tree, options)) {
-    for (int i = 0; i < n; ++i) hits[i] = Intersect(tree, rays[i], options);
-    return;
-  }
   Packet p;
-  Prepare(tree, rays, n, &p);
-  if (!p.same_signs) {
+  if (!PreparePacket(tree, rays, n, options, &p)) {
     for (int i = 0; i < n; ++i) hits[i] = Intersect(tree, rays[i], options);
     return;
   }
+  for (int i = 0; i < n; ++i) hits[i] = Hit();
   if (p.live != 0) Trace<false>(tree, p, hits);
 }
 
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, bool* occluded,
                     const TraversalOptions& options) {
-  if (!TreeSupportsPackets(tree, options)) {
-    for (int i = 0; i < n; ++i) occluded[i] = Occluded(tree, rays[i], options);
-    return;
-  }
   Packet p;
-  Prepare(tree, rays, n, &p);
-  if (!p.same_signs) {
+  if (!PreparePacket(tree, rays, n, options, &p)) {
     for (int i = 0; i < n; ++i) occluded[i] = Occluded(tree, rays[i], options);
     return;
   }
