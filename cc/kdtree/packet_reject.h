@@ -11,20 +11,22 @@
 
 namespace kdtree {
 
-// Bit l set when packet lane l is certainly rejected by the watertight test
-// (its three edge functions have definitely different signs). SSE single
-// precision performs the very IEEE operations of IntersectTriangleWatertight
-// (watertight.h) in the same order (no contraction: -ffp-contract=off), so a
-// clear bit means that test decides exactly as without this step.
-inline int RejectMask4(const WatertightRay& r, const float* packet) {
+// Bit l set when packet lane l is certainly rejected by the watertight test:
+// its three edge functions have definitely different signs, or, with
+// `behind` (tmin >= 0), its three vertex depths z = sz (v[kz] - o[kz]) are
+// negative. SSE single precision performs the very IEEE operations of
+// IntersectTriangleWatertight (watertight.h) in the same order (no
+// contraction: -ffp-contract=off), so a set bit is a lane that test rejects,
+// and a clear bit means it decides exactly as without this step.
+inline int RejectMask4(const WatertightRay& r, const float* packet, bool behind) {
   const __m128 ox = _mm_set1_ps(r.ox), oy = _mm_set1_ps(r.oy), oz = _mm_set1_ps(r.oz);
   const __m128 sx = _mm_set1_ps(r.sx), sy = _mm_set1_ps(r.sy);
-  __m128 x[3], y[3];
+  __m128 x[3], y[3], z[3];
   for (int v = 0; v < 3; ++v) {
     const float* p = packet + 3 * v * kPacketLanes;
-    const __m128 z = _mm_sub_ps(_mm_loadu_ps(p + r.kz * kPacketLanes), oz);
-    x[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.kx * kPacketLanes), ox), _mm_mul_ps(sx, z));
-    y[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.ky * kPacketLanes), oy), _mm_mul_ps(sy, z));
+    z[v] = _mm_sub_ps(_mm_loadu_ps(p + r.kz * kPacketLanes), oz);
+    x[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.kx * kPacketLanes), ox), _mm_mul_ps(sx, z[v]));
+    y[v] = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(p + r.ky * kPacketLanes), oy), _mm_mul_ps(sy, z[v]));
   }
   const __m128 e0 = _mm_sub_ps(_mm_mul_ps(x[2], y[1]), _mm_mul_ps(y[2], x[1]));
   const __m128 e1 = _mm_sub_ps(_mm_mul_ps(x[0], y[2]), _mm_mul_ps(y[0], x[2]));
@@ -34,7 +36,15 @@ inline int RejectMask4(const WatertightRay& r, const float* packet) {
                                _mm_cmplt_ps(e2, zero));
   const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)),
                                _mm_cmpgt_ps(e2, zero));
-  return _mm_movemask_ps(_mm_and_ps(neg, pos));
+  __m128 reject = _mm_and_ps(neg, pos);
+  if (behind) {
+    const __m128 sz = _mm_set1_ps(r.sz);
+    reject = _mm_or_ps(
+        reject, _mm_and_ps(_mm_and_ps(_mm_cmplt_ps(_mm_mul_ps(sz, z[0]), zero),
+                                      _mm_cmplt_ps(_mm_mul_ps(sz, z[1]), zero)),
+                           _mm_cmplt_ps(_mm_mul_ps(sz, z[2]), zero)));
+  }
+  return _mm_movemask_ps(reject);
 }
 
 }  // namespace kdtree

@@ -200,7 +200,7 @@ void Trace(const KdTree& tree, const Packet& p, Hit* best) {
         const int r = __builtin_ctz(rays);
         const WatertightRay& wray = s.wray[r];
         Hit& b = best[r];
-        int live = tri_lanes & ~RejectMask4(wray, packet);
+        int live = tri_lanes & ~RejectMask4(wray, packet, p.ray[r].tmin >= 0.0f);
         while (live != 0) {
           const int l = __builtin_ctz(live);
           live &= live - 1;

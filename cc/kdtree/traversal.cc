@@ -92,6 +92,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
   best.t = ray.tmax;
   const float slack = setup.slack;
   const WatertightRay& wray = setup.wray;
+  // Triangles wholly behind the origin are rejected in the 4-wide step too
+  // (packet_reject.h), as the watertight test rejects them.
+  const bool behind = ray.tmin >= 0.0f;
   uint32_t mailbox[kMailboxSlots];
   if (kMailbox) {
     for (int i = 0; i < kMailboxSlots; ++i) mailbox[i] = kNoHit;
@@ -171,7 +174,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
           }
         }
         if (kCount) counters->triangle_tests += __builtin_popcount(live);
-        live &= ~RejectMask4(wray, packet);
+        live &= ~RejectMask4(wray, packet, behind);
         while (live != 0) {
           const int l = __builtin_ctz(live);
           live &= live - 1;
