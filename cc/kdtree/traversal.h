@@ -56,7 +56,9 @@
 //  - The common rejection of the watertight test (edge functions of definitely
 //    different signs, the same float expressions as watertight.h) runs first,
 //    on 4 triangles at once (SSE) with the packets, else inlined per triangle;
-//    only triangles that pass it run the full test.
+//    with the packets it also drops triangles whose three vertices lie behind
+//    the origin (tmin >= 0; packet_reject.h). Only triangles that pass run
+//    the full test.
 //  - Optional mailboxing (TraversalOptions::mailbox; Amanatides & Woo, "A fast
 //    voxel traversal algorithm for ray tracing", Eurographics 1987; Havran's
 //    thesis, 2000, section 5.5): a triangle that clipping put in several leaves
