@@ -199,64 +199,62 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   if (record) Append(&rows, &res.rays);
 
   // 2. Shadow rays: one per primary hit and light.
-  if (shadows && packets) {
-    // Per 2x2 block and light, the shadow rays of the block's hits together.
+  if (shadows) {
     t0 = Clock::now();
-    res.s_hit = ForBands(w, h, threads, tile, false, 2, [&](int y0, int y1, int x0, int x1) {
-      uint64_t blocked = 0;
-      for (int x = x0; x < x1; x += 2) {
-        size_t pix[kTracerPacket], lit[kTracerPacket];
-        const int m = BlockPixels(w, y0, y1, x, x1, pix);
-        SurfacePoint sp[kTracerPacket];
-        int n = 0;
-        for (int i = 0; i < m; ++i) {
-          const Hit& hit = res.primary_hits[pix[i]];
-          if (!hit.hit()) continue;
-          sp[n] = MakeSurfacePoint(soup, pixel_ray(pix[i]), hit);
-          lit[n++] = pix[i];
-        }
-        for (int l = 0; l < n_lights && n > 0; ++l) {
-          Ray rays[kTracerPacket];
-          bool occ[kTracerPacket];
-          for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], view.lights[l].position);
-          tracer.OccludedPacket(rays, n, occ);
-          for (int i = 0; i < n; ++i) {
-            occluded[lit[i] * n_lights + l] = occ[i];
-            blocked += occ[i];
-          }
-        }
-      }
-      return blocked;
-    });
-    res.shadow.seconds = Seconds(t0);
-    res.shadow.rays = res.p_hit * n_lights;
-    res.s_miss = res.shadow.rays - res.s_hit;
-  } else if (shadows) {
-    t0 = Clock::now();
-    res.s_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
-      {
+    if (packets) {
+      // Per 2x2 block and light, the shadow rays of the block's hits together.
+      res.s_hit = ForBands(w, h, threads, tile, false, 2, [&](int y0, int y1, int x0, int x1) {
         uint64_t blocked = 0;
-        for (int x = x0; x < x1; ++x) {
-          const size_t p = static_cast<size_t>(y) * w + x;
-          const Hit& hit = res.primary_hits[p];
-          if (!hit.hit()) continue;
-          const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
-          for (int l = 0; l < n_lights; ++l) {
-            const Ray ray = ShadowRay(sp, view.lights[l].position);
-            const bool occ = tracer.Occluded(ray);
-            occluded[p * n_lights + l] = occ;
-            blocked += occ;
-            if (record) {
-              RayRecord rec = MakeRecord(ray, RayKind::kShadow, static_cast<uint32_t>(p),
-                                         static_cast<uint16_t>(l));
-              rec.hit = occ;
-              rows[y].push_back(rec);
+        for (int x = x0; x < x1; x += 2) {
+          size_t pix[kTracerPacket], lit[kTracerPacket];
+          const int m = BlockPixels(w, y0, y1, x, x1, pix);
+          SurfacePoint sp[kTracerPacket];
+          int n = 0;
+          for (int i = 0; i < m; ++i) {
+            const Hit& hit = res.primary_hits[pix[i]];
+            if (!hit.hit()) continue;
+            sp[n] = MakeSurfacePoint(soup, pixel_ray(pix[i]), hit);
+            lit[n++] = pix[i];
+          }
+          for (int l = 0; l < n_lights && n > 0; ++l) {
+            Ray rays[kTracerPacket];
+            bool occ[kTracerPacket];
+            for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], view.lights[l].position);
+            tracer.OccludedPacket(rays, n, occ);
+            for (int i = 0; i < n; ++i) {
+              occluded[lit[i] * n_lights + l] = occ[i];
+              blocked += occ[i];
             }
           }
         }
         return blocked;
-      }
-    });
+      });
+    } else {
+      res.s_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
+        {
+          uint64_t blocked = 0;
+          for (int x = x0; x < x1; ++x) {
+            const size_t p = static_cast<size_t>(y) * w + x;
+            const Hit& hit = res.primary_hits[p];
+            if (!hit.hit()) continue;
+            const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
+            for (int l = 0; l < n_lights; ++l) {
+              const Ray ray = ShadowRay(sp, view.lights[l].position);
+              const bool occ = tracer.Occluded(ray);
+              occluded[p * n_lights + l] = occ;
+              blocked += occ;
+              if (record) {
+                RayRecord rec = MakeRecord(ray, RayKind::kShadow, static_cast<uint32_t>(p),
+                                           static_cast<uint16_t>(l));
+                rec.hit = occ;
+                rows[y].push_back(rec);
+              }
+            }
+          }
+          return blocked;
+        }
+      });
+    }
     res.shadow.seconds = Seconds(t0);
     res.shadow.rays = res.p_hit * n_lights;
     res.s_miss = res.shadow.rays - res.s_hit;
