@@ -132,7 +132,8 @@ void SweepCounts(const uint32_t* starts, const uint32_t* ends, size_t n, const A
 // One axis (the driving axis): counts, then sweeps. The bins of four
 // references at a time come from BinOf4 (the scalar BinOf's value in every
 // lane); the rest from BinOf.
-void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bins,
+template <class Ref>
+void SweepAxis(const Ref* refs, const AABB* boxes, size_t n, const AABB& box, int axis, int bins,
                const Config& config, BinScratch* s, Split* best) {
   const float lo = box.lo[axis];
   const float extent = box.hi[axis] - lo;
@@ -145,20 +146,22 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
   ZeroCounters(kLanes * static_cast<size_t>(bins), &s->ends);
   uint32_t* st = s->starts.data();
   uint32_t* en = s->ends.data();
-  static_assert(sizeof(BuildRef) == 7 * sizeof(float), "a reference is 7 words");
   const __m128 vlo = _mm_set1_ps(lo), vext = _mm_set1_ps(extent);
   const __m128 fbins = _mm_set1_ps(static_cast<float>(bins));
   const __m128 last = _mm_set1_ps(static_cast<float>(bins - 1));
   size_t i = 0;
   for (; i + 4 <= n; i += 4) {
-    // Coordinate `axis` of box.lo of references i..i+3 (7 words apart);
-    // box.hi's is 3 words further.
-    const float* c = Coords(refs[i].box) + axis;
+    // Coordinate `axis` of box.lo of references i..i+3; box.hi's is 3 words
+    // further.
+    const float* c0 = Coords(BoxOf(refs[i], boxes)) + axis;
+    const float* c1 = Coords(BoxOf(refs[i + 1], boxes)) + axis;
+    const float* c2 = Coords(BoxOf(refs[i + 2], boxes)) + axis;
+    const float* c3 = Coords(BoxOf(refs[i + 3], boxes)) + axis;
     alignas(16) int l[4], h[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(l),
-                    BinOf4(_mm_setr_ps(c[0], c[7], c[14], c[21]), vlo, fbins, vext, last));
+                    BinOf4(_mm_setr_ps(c0[0], c1[0], c2[0], c3[0]), vlo, fbins, vext, last));
     _mm_store_si128(reinterpret_cast<__m128i*>(h),
-                    BinOf4(_mm_setr_ps(c[3], c[10], c[17], c[24]), vlo, fbins, vext, last));
+                    BinOf4(_mm_setr_ps(c0[3], c1[3], c2[3], c3[3]), vlo, fbins, vext, last));
     ++st[l[0]];
     ++st[bins + l[1]];
     ++st[2 * bins + l[2]];
@@ -169,8 +172,9 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
     ++en[3 * bins + h[3]];
   }
   for (; i < n; ++i) {
-    ++st[BinOf(refs[i].box.lo[axis], lo, extent, bins)];
-    ++en[BinOf(refs[i].box.hi[axis], lo, extent, bins)];
+    const AABB& b = BoxOf(refs[i], boxes);
+    ++st[BinOf(b.lo[axis], lo, extent, bins)];
+    ++en[BinOf(b.hi[axis], lo, extent, bins)];
   }
   for (int k = 1; k < kLanes; ++k) {
     for (int b = 0; b < bins; ++b) {
@@ -181,10 +185,9 @@ void SweepAxis(const BuildRef* refs, size_t n, const AABB& box, int axis, int bi
   SweepCounts(s->starts.data(), s->ends.data(), n, box, axis, bins, config, s, best);
 }
 
-}  // namespace
-
-void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
-                      BinScratch* s) {
+template <class Ref>
+void CountBins(const Ref* refs, const AABB* boxes, size_t n, const AABB& box, int bins,
+               BinScratch* s) {
   // Two sets of the three histograms (even and odd references), summed at
   // the end, so that consecutive references do not wait on each other's
   // increments (see SweepAxis).
@@ -201,8 +204,9 @@ void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
   uint32_t* st = s->starts.data();
   uint32_t* en = s->ends.data();
   for (size_t i = 0; i < n; ++i) {
-    // lo.x lo.y lo.z hi.x and hi.x hi.y hi.z tri: the fourth lanes are unused.
-    const float* b = Coords(refs[i].box);
+    // lo.x lo.y lo.z hi.x and hi.x hi.y hi.z plus the word after the box
+    // (BuildRef::tri, or the next box's lo.x): the fourth lanes are unused.
+    const float* b = Coords(BoxOf(refs[i], boxes));
     alignas(16) int l[4], h[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(l),
                     BinOf4(_mm_loadu_ps(b), lo, fbins, extent, last));
@@ -223,15 +227,17 @@ void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
   }
 }
 
-Split FindBinnedSahSplit(const BuildRef* refs, size_t n, const AABB& node_box,
-                         const Config& config, BinScratch* scratch) {
+template <class Ref>
+Split FindSplit(const Ref* refs, const AABB* boxes, size_t n, const AABB& node_box,
+                const Config& config, BinScratch* scratch) {
   Split best;
   if (config.use_driving_axis) {
-    SweepAxis(refs, n, node_box, node_box.LongestAxis(), config.bins, config, scratch, &best);
+    SweepAxis(refs, boxes, n, node_box, node_box.LongestAxis(), config.bins, config, scratch,
+              &best);
     return best;
   }
   // All three axes from one pass over the references.
-  CountBinsAllAxes(refs, n, node_box, config.bins, scratch);
+  CountBins(refs, boxes, n, node_box, config.bins, scratch);
   for (int axis = 0; axis < 3; ++axis) {
     if (!(node_box.hi[axis] - node_box.lo[axis] > 0.0f)) continue;
     const size_t off = static_cast<size_t>(axis) * config.bins;
@@ -239,6 +245,23 @@ Split FindBinnedSahSplit(const BuildRef* refs, size_t n, const AABB& node_box,
                 config.bins, config, scratch, &best);
   }
   return best;
+}
+
+}  // namespace
+
+void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
+                      BinScratch* scratch) {
+  CountBins(refs, nullptr, n, box, bins, scratch);
+}
+
+Split FindBinnedSahSplit(const BuildRef* refs, size_t n, const AABB& node_box,
+                         const Config& config, BinScratch* scratch) {
+  return FindSplit(refs, nullptr, n, node_box, config, scratch);
+}
+
+Split FindBinnedSahSplit(const IndexRef* refs, const AABB* boxes, size_t n, const AABB& node_box,
+                         const Config& config, BinScratch* scratch) {
+  return FindSplit(refs, boxes, n, node_box, config, scratch);
 }
 
 }  // namespace kdtree

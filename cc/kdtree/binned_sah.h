@@ -61,6 +61,13 @@ void CountBinsAllAxes(const BuildRef* refs, size_t n, const AABB& box, int bins,
 Split FindBinnedSahSplit(const BuildRef* refs, size_t n, const AABB& node_box,
                          const Config& config, BinScratch* scratch);
 
+// The same over triangle indices whose boxes are boxes[tri] (build_ref.h): the
+// split FindBinnedSahSplit returns for BuildRefs holding those boxes. `boxes`
+// has one element past the last triangle's (the SSE loads read a word past a
+// box).
+Split FindBinnedSahSplit(const IndexRef* refs, const AABB* boxes, size_t n, const AABB& node_box,
+                         const Config& config, BinScratch* scratch);
+
 }  // namespace kdtree
 
 #endif  // KDTREE_CC_KDTREE_BINNED_SAH_H_

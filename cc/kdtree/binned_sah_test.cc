@@ -1,5 +1,6 @@
 #include "cc/kdtree/binned_sah.h"
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -151,6 +152,49 @@ TEST(BinnedSah, VectorisedSweepIsBitIdenticalToTheScalarDefinition) {
         ASSERT_EQ(got.axis, want.axis) << trial << " " << bins;
         ASSERT_EQ(got.pos, want.pos) << trial << " " << bins;  // bit-identical
         ASSERT_EQ(got.cost, want.cost) << trial << " " << bins;
+      }
+    }
+  }
+}
+
+// Index references (build_ref.h) read their boxes from an array by triangle:
+// the same split as BuildRefs holding those boxes, bit for bit, on the driving
+// axis and on all three, for references in any order (a child's indices are a
+// subsequence of its parent's) and with a box array just long enough.
+TEST(BinnedSah, IndexReferencesGiveTheSplitOfBoxReferences) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> u(-5.0f, 5.0f);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 41;
+    std::vector<AABB> boxes;
+    for (int i = 0; i < n; ++i) {
+      Vec3 p(u(rng), u(rng), u(rng)), q = p + Vec3(u(rng), u(rng), u(rng)) * 0.3f;
+      boxes.push_back(AABB(Min(p, q), Max(p, q)));
+    }
+    AABB node;
+    for (const AABB& b : boxes) node.Extend(b);
+    boxes.push_back(AABB());  // the one element past the end
+    std::vector<IndexRef> index;
+    for (int i = 0; i < n; ++i) {
+      if ((i * 7 + trial) % 3 != 0 || i == 0) index.push_back(static_cast<IndexRef>(i));
+    }
+    std::shuffle(index.begin(), index.end(), rng);
+    std::vector<BuildRef> refs;
+    for (IndexRef t : index) refs.push_back(BuildRef{boxes[t], t});
+    for (int bins : {2, 8, 32}) {
+      for (bool driving : {true, false}) {
+        Config c;
+        c.bins = bins;
+        c.use_driving_axis = driving;
+        BinScratch s1, s2;
+        const Split want = FindBinnedSahSplit(refs.data(), refs.size(), node, c, &s1);
+        const Split got =
+            FindBinnedSahSplit(index.data(), boxes.data(), index.size(), node, c, &s2);
+        ASSERT_EQ(got.found, want.found) << trial;
+        if (!want.found) continue;
+        ASSERT_EQ(got.axis, want.axis) << trial;
+        ASSERT_EQ(got.pos, want.pos) << trial;
+        ASSERT_EQ(got.cost, want.cost) << trial;
       }
     }
   }

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -59,22 +60,37 @@ int EffectiveMaxDepth(const Config& config, size_t n) {
 // to 8 references per triangle: N_TP, peak_build_refs).
 constexpr size_t kReserveFactor = 8;
 
+// True when no reference's box ever differs from its triangle's tight box
+// (no clipping, no perfect splits) and the split strategy reads boxes only
+// through BoxOf: the build then passes bare indices (IndexRef, build_ref.h).
+bool UsesIndexRefs(const Config& config) {
+  return !config.use_clipping && !config.perfect_splits &&
+         (!config.use_binning || config.split_method == Config::SplitMethod::kBinned);
+}
+
+// Ref is BuildRef (a triangle and the box of its part in the node) or
+// IndexRef (a triangle whose box is boxes_[tri]).
+template <class Ref>
 class Builder {
+  static constexpr bool kIndex = std::is_same<Ref, IndexRef>::value;
+
  public:
   // parallel_depth: nodes above it spawn their children as tasks
-  // (parallel_build.h); 0 = serial.
+  // (parallel_build.h); 0 = serial. `boxes`: the triangles' tight boxes, for
+  // IndexRef builders under the root builder (which makes them).
   Builder(const TriangleSoup& soup, const Config& config, Fragment* fragment, int max_depth,
-          int parallel_depth)
+          int parallel_depth, const AABB* boxes = nullptr)
       : soup_(soup),
         config_(config),
         fragment_(fragment),
         tree_(&fragment->tree),
         max_depth_(max_depth),
-        parallel_depth_(parallel_depth) {}
+        parallel_depth_(parallel_depth),
+        boxes_(boxes) {}
 
   // Builds a subtree (a fragment, parallel_build.h) over `refs` into tree_.
   // Its root reads `refs` in place (the parent's pool, unchanged meanwhile).
-  void RunFragment(const BuildRef* refs, size_t n, const AABB& box, int depth) {
+  void RunFragment(const Ref* refs, size_t n, const AABB& box, int depth) {
     tree_->nodes.reserve(kReserveFactor * n + 1);
     tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);
@@ -93,13 +109,26 @@ class Builder {
     tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);  // the shared list of every empty leaf
     pool_.Reserve(kReserveFactor * n + 1);
-    BuildRef* first = pool_.Reserved(n);
+    Ref* first = pool_.Reserved(n);
+    if (kIndex) {
+      // One element more: the SSE loads of binned_sah.cc read a word past a
+      // box.
+      box_storage_.resize(n + 1);
+      box_storage_[n] = AABB();
+      boxes_ = box_storage_.data();
+    }
     std::vector<AABB> chunk_box(kSetupChunks);
     ForChunks(n, parallel, [&](size_t chunk, size_t begin, size_t end) {
       AABB box;
       for (size_t i = begin; i < end; ++i) {
-        first[i] = BuildRef{soup_.Bounds(i), static_cast<uint32_t>(i)};
-        box.Extend(first[i].box);
+        const AABB b = soup_.Bounds(i);
+        if constexpr (kIndex) {
+          box_storage_[i] = b;
+          first[i] = static_cast<IndexRef>(i);
+        } else {
+          first[i] = BuildRef{b, static_cast<uint32_t>(i)};
+        }
+        box.Extend(b);
       }
       chunk_box[chunk] = box;
     });
@@ -120,7 +149,7 @@ class Builder {
   // The node over pool_[begin, end), or over external[0, end - begin) when
   // given (a fragment's root).
   void Recurse(size_t begin, size_t end, const AABB& box, int depth,
-               const BuildRef* external = nullptr) {
+               const Ref* external = nullptr) {
     const uint32_t node = static_cast<uint32_t>(tree_->nodes.size());
     tree_->nodes.push_back(KdNode::Leaf(0));
     const size_t count = end - begin;
@@ -142,7 +171,11 @@ class Builder {
     Partition(begin, end, external, split, left_box, right_box);
     const size_t right_begin = left_begin + count;  // see Partition
     const size_t right_end = pool_.size();
-    if (pool_.size() > counters().peak_build_refs) counters().peak_build_refs = pool_.size();
+    if (pool_.size() > counters().peak_build_refs) {
+      counters().peak_build_refs = pool_.size();
+      counters().peak_build_bytes =
+          pool_.size() * sizeof(Ref) + (kIndex ? (soup_.size() + 1) * sizeof(AABB) : 0);
+    }
 
     if (count >= kParallelMinRefs && depth < parallel_depth_) {
       RecurseInParallel(node, left_begin, left_begin + left_count_, right_begin, right_end,
@@ -158,8 +191,12 @@ class Builder {
     pool_.Resize(left_begin);
   }
 
-  Split FindSplit(const BuildRef* refs, size_t count, const AABB& box) {
+  Split FindSplit(const Ref* refs, size_t count, const AABB& box) {
     if (!config_.use_binning) return FindMedianSplit(box);
+    if constexpr (kIndex) {
+      assert(config_.split_method == Config::SplitMethod::kBinned);  // UsesIndexRefs
+      return FindBinnedSahSplit(refs, boxes_, count, box, config_, &scratch_);
+    } else {
     switch (config_.split_method) {
       case Config::SplitMethod::kSweep:
         return FindSweepSahSplit(refs, count, box, config_, &sweep_);
@@ -169,6 +206,7 @@ class Builder {
         break;
     }
     return FindBinnedSahSplit(refs, count, box, config_, &scratch_);
+    }
   }
 
   // The two children as two fragments built at once (parallel_build.h),
@@ -183,9 +221,9 @@ class Builder {
     tree_->nodes.push_back(KdNode::Leaf(0));  // right placeholder
     auto left = std::make_unique<Fragment>();
     auto right = std::make_unique<Fragment>();
-    Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_);
-    Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_);
-    const BuildRef* refs = pool_.data();
+    Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_, boxes_);
+    Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_, boxes_);
+    const Ref* refs = pool_.data();
     tbb::task_group group;
     group.run(
         [&] { lb.RunFragment(refs + left_begin, left_end - left_begin, left_box, depth + 1); });
@@ -204,15 +242,17 @@ class Builder {
   // reference, so neither side can overrun the other; the slots between them
   // stay unused until the node is done (a copy of the right side next to the
   // left one cost 5 % of a binned build).
-  void Partition(size_t begin, size_t end, const BuildRef* external, const Split& split,
+  void Partition(size_t begin, size_t end, const Ref* external, const Split& split,
                  const AABB& left_box, const AABB& right_box) {
     const size_t count = end - begin;
-    BuildRef* const left_first = pool_.Reserved(2 * count);
-    BuildRef* const right_first = left_first + count;
+    Ref* const left_first = pool_.Reserved(2 * count);
+    Ref* const right_first = left_first + count;
     // Stable: no growth below.
-    const BuildRef* const src = external != nullptr ? external : pool_.data() + begin;
+    const Ref* const src = external != nullptr ? external : pool_.data() + begin;
     Cursors out{left_first, right_first};
-    if (config_.use_clipping || config_.perfect_splits) {
+    if constexpr (kIndex) {
+      PartitionBoxes(src, count, split, &out);
+    } else if (config_.use_clipping || config_.perfect_splits) {
       PartitionClipping(src, count, split, left_box, right_box, &out);
     } else {
       PartitionBoxes(src, count, split, &out);
@@ -223,23 +263,24 @@ class Builder {
   }
 
   struct Cursors {
-    BuildRef* left;   // next free slot of the left side
-    BuildRef* right;  // next free slot of the right side
+    Ref* left;   // next free slot of the left side
+    Ref* right;  // next free slot of the right side
   };
 
   // No clipping: a box goes left when it starts before the plane, right when
   // it ends after it. Both slots are written and the cursors advance by the
   // outcome (no branch on it); a box in the plane goes to both sides, or
   // nowhere in the seed-compatible mode.
-  void PartitionBoxes(const BuildRef* src, size_t count, const Split& split, Cursors* out) {
+  void PartitionBoxes(const Ref* src, size_t count, const Split& split, Cursors* out) {
     const int axis = split.axis;
     const float pos = split.pos;
     const bool seed = config_.seed_compatible;
-    BuildRef* left = out->left;
-    BuildRef* right = out->right;
+    const AABB* const boxes = boxes_;
+    Ref* left = out->left;
+    Ref* right = out->right;
     for (size_t i = 0; i < count; ++i) {
-      const BuildRef& r = src[i];
-      const float* c = Coords(r.box);
+      const Ref& r = src[i];
+      const float* c = Coords(BoxOf(r, boxes));
       bool to_left = c[axis] < pos, to_right = c[3 + axis] > pos;
       if (!to_left && !to_right) {  // lo == hi == pos: lies in the plane
         if (seed) {
@@ -333,13 +374,13 @@ class Builder {
     *(*cursor)++ = BuildRef{b, tri};
   }
 
-  void MakeLeaf(uint32_t node, const BuildRef* leaf_refs, size_t n, const AABB& box) {
+  void MakeLeaf(uint32_t node, const Ref* leaf_refs, size_t n, const AABB& box) {
     HugeBuffer<uint32_t>& refs = tree_->refs;
     const size_t offset = refs.size();
     refs.push_back(0);
     uint32_t count = 0;
     for (size_t i = 0; i < n; ++i) {
-      const uint32_t t = leaf_refs[i].tri;
+      const uint32_t t = TriOf(leaf_refs[i]);
       if (config_.use_pruning && config_.exact_pruning) {
         const bool overlaps =
             config_.seed_compatible
@@ -369,10 +410,12 @@ class Builder {
   const Config& config_;
   Fragment* fragment_;
   KdTree* tree_;
-  RefPool pool_;
+  RefPoolOf<Ref> pool_;
   size_t left_count_ = 0;
   const int max_depth_;
   const int parallel_depth_;
+  const AABB* boxes_;               // IndexRef: the tight boxes, by triangle
+  HugeBuffer<AABB> box_storage_;    // the root builder's boxes_
   BinScratch scratch_;
   SweepScratch sweep_;
   bool overflow_ = false;
@@ -401,8 +444,8 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
                           ? tbb::this_task_arena::max_concurrency()
                           : config.build_threads;
   Fragment root;
-  Builder builder(soup, config, &root, EffectiveMaxDepth(config, soup.size()),
-                  threads > 1 ? ParallelDepth(threads) : 0);
+  const int max_depth = EffectiveMaxDepth(config, soup.size());
+  const int parallel_depth = threads > 1 ? ParallelDepth(threads) : 0;
   absl::Status status;
   // The arena's threads set up the triangle data and the first references,
   // build, then lay out the leaves (leaf_layout.h).
@@ -416,7 +459,11 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
       }
       std::copy(soup.v.begin() + 3 * begin, soup.v.begin() + 3 * end, tree.verts.begin() + 3 * begin);
     });
-    status = builder.Run(threads > 1);
+    if (UsesIndexRefs(config)) {
+      status = Builder<IndexRef>(soup, config, &root, max_depth, parallel_depth).Run(threads > 1);
+    } else {
+      status = Builder<BuildRef>(soup, config, &root, max_depth, parallel_depth).Run(threads > 1);
+    }
     if (!status.ok()) return;
     tree.bounds = root.tree.bounds;
     if (root.children.empty()) {

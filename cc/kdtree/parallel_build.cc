@@ -118,6 +118,7 @@ void AddCounters(const Fragment& f, BuildCounters* c) {
   c->pruned_leaf += g.pruned_leaf;
   c->lost_planar += g.lost_planar;
   c->peak_build_refs = std::max(c->peak_build_refs, g.peak_build_refs);
+  c->peak_build_bytes = std::max(c->peak_build_bytes, g.peak_build_bytes);
   for (const auto& child : f.children) AddCounters(*child.second, c);
 }
 

@@ -1,4 +1,5 @@
-// The builder's pool of build references: a growable array of BuildRef that
+// The builder's pool of build references: a growable array of BuildRef (or of
+// bare triangle indices, IndexRef, for builds whose boxes never change) that
 // hands out raw pointers, so that a partition writes its children's
 // references with plain stores (no per-element capacity check, no
 // construction of elements that are about to be overwritten).
@@ -6,7 +7,7 @@
 // std::vector cannot append without constructing (resize() runs AABB's
 // default constructor on every new element; push_back() checks capacity per
 // element). RefPool keeps size and capacity itself: Reserve() grows the
-// storage (memcpy: BuildRef is trivially copyable), Reserved() returns the
+// storage (memcpy: Ref is trivially copyable), Reserved() returns the
 // first of `n` slots past the end for the caller to fill, Resize() shrinks or
 // commits slots already written, Append() copies references in. Storage comes from HugePageAllocator (huge
 // pages when large, as the rest of the tree's arrays).
@@ -23,20 +24,21 @@
 
 namespace kdtree {
 
-static_assert(std::is_trivially_copyable<BuildRef>::value, "RefPool copies with memcpy");
+template <class Ref>
+class RefPoolOf {
+  static_assert(std::is_trivially_copyable<Ref>::value, "RefPool copies with memcpy");
 
-class RefPool {
  public:
-  RefPool() = default;
-  RefPool(const RefPool&) = delete;
-  RefPool& operator=(const RefPool&) = delete;
-  ~RefPool() { Free(); }
+  RefPoolOf() = default;
+  RefPoolOf(const RefPoolOf&) = delete;
+  RefPoolOf& operator=(const RefPoolOf&) = delete;
+  ~RefPoolOf() { Free(); }
 
   size_t size() const { return size_; }
   size_t capacity() const { return capacity_; }
-  BuildRef* data() { return data_; }
-  const BuildRef* data() const { return data_; }
-  BuildRef& operator[](size_t i) {
+  Ref* data() { return data_; }
+  const Ref* data() const { return data_; }
+  Ref& operator[](size_t i) {
     assert(i < size_);
     return data_[i];
   }
@@ -47,9 +49,9 @@ class RefPool {
     if (n <= capacity_) return;
     const size_t grown = capacity_ + capacity_ / 2;
     const size_t cap = n > grown ? n : grown;
-    BuildRef* fresh = HugePageAllocator<BuildRef>().allocate(cap);
+    Ref* fresh = HugePageAllocator<Ref>().allocate(cap);
     const size_t size = size_;
-    if (size > 0) std::memcpy(fresh, data_, size * sizeof(BuildRef));
+    if (size > 0) std::memcpy(fresh, data_, size * sizeof(Ref));
     Free();
     data_ = fresh;
     capacity_ = cap;
@@ -58,7 +60,7 @@ class RefPool {
 
   // Slots size() .. size() + n - 1 exist after this (contents undefined until
   // written); size() is unchanged. Returns a pointer to the first.
-  BuildRef* Reserved(size_t n) {
+  Ref* Reserved(size_t n) {
     Reserve(size_ + n);
     return data_ + size_;
   }
@@ -71,23 +73,25 @@ class RefPool {
   }
 
   // Appends refs[0 .. n-1] (which must not point into this pool).
-  void Append(const BuildRef* refs, size_t n) {
+  void Append(const Ref* refs, size_t n) {
     Reserve(size_ + n);
-    if (n > 0) std::memcpy(data_ + size_, refs, n * sizeof(BuildRef));
+    if (n > 0) std::memcpy(data_ + size_, refs, n * sizeof(Ref));
     size_ += n;
   }
 
  private:
   void Free() {
-    if (data_ != nullptr) HugePageAllocator<BuildRef>().deallocate(data_, capacity_);
+    if (data_ != nullptr) HugePageAllocator<Ref>().deallocate(data_, capacity_);
     data_ = nullptr;
     capacity_ = size_ = 0;
   }
 
-  BuildRef* data_ = nullptr;
+  Ref* data_ = nullptr;
   size_t size_ = 0;
   size_t capacity_ = 0;
 };
+
+using RefPool = RefPoolOf<BuildRef>;
 
 }  // namespace kdtree
 

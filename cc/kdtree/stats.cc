@@ -56,7 +56,7 @@ TreeStats ComputeStats(const KdTree& tree) {
                  tree.tris.size() * sizeof(TriAccel) + tree.verts.size() * sizeof(Vec3) +
                  tree.leaf_soa.size() * sizeof(float) +
                  tree.leaf_nodes.size() * sizeof(KdNode);
-  s.build_peak_bytes = tree.counters.peak_build_refs * sizeof(BuildRef);
+  s.build_peak_bytes = tree.counters.peak_build_bytes;
   return s;
 }
 

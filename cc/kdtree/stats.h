@@ -35,7 +35,8 @@ struct TreeStats {
   // Bytes of the traversable tree: nodes, leaf lists, per-triangle data
   // (TriAccel and the vertices) and, when built, the leaf-order packets.
   uint64_t tree_bytes = 0;
-  // Peak bytes of build references (clipped boxes included) during the build.
+  // Peak bytes of build references (clipped boxes included) during the build,
+  // with the box array of an index build (build_ref.h).
   uint64_t build_peak_bytes = 0;
   double sah_cost = 0;
   // Leaves that are not valid boxes (must be 0) and triangles absent from

@@ -49,6 +49,9 @@ struct BuildCounters {
   // Largest number of build-reference slots in use at once: the references
   // and the slots a partition leaves between its two sides (builder.cc).
   uint64_t peak_build_refs = 0;
+  // The bytes they held (BuildRef or IndexRef slots, plus the box array an
+  // IndexRef build reads: build_ref.h).
+  uint64_t peak_build_bytes = 0;
   uint64_t pruned() const { return pruned_box + pruned_leaf; }  // N_PR
 };
 
