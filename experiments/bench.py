@@ -86,10 +86,11 @@ def render_summary(records):
     for r in records:
         rows.setdefault((r["scene"], r["n_tri"], r["preset"]), {})[r["threads"]] = r
     out = ["| scene | triangles | preset | kd T_R, 1 thread | Embree T_R | kd/Embree "
-           "| paired | with mailbox | packets: kd/Embree, paired | kd 2-thread speed-up "
+           "| paired | with mailbox | packets: kd/Embree, paired "
+           "| origin triangle untested: kd/Embree, paired | kd 2-thread speed-up "
            "| Embree 2-thread speed-up | validation |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    ratios, best, paired_all, packet_all = [], [], [], []
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    ratios, best, paired_all, packet_all, origin_all = [], [], [], [], []
     for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         one, two = by_t.get(1), by_t.get(2)
         if one is None:
@@ -107,6 +108,10 @@ def render_summary(records):
         packet = (one.get("ratio_kd_over_embree_packet") or {}).get("kd_packet", {}).get("paired")
         if packet is not None:
             packet_all.append(packet)
+        # Shadow and AO rays leave their origin triangle untested (kd_origin).
+        origin = one.get("ratio_kd_over_embree", {}).get("kd_origin", {}).get("paired")
+        if origin is not None:
+            origin_all.append(origin)
         if ratio is not None:
             ratios.append(ratio)
             best.append(max(ratio, mb_ratio or 0))
@@ -119,7 +124,7 @@ def render_summary(records):
 
         v = one["validation"]
         d = v.get("embree_disagreements") or {}
-        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %d/%d brute-force "
+        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %s | %d/%d brute-force "
                    "mismatches, %s Embree disagreements |" % (
                        scene, format(n, ","), preset, kd["T_R_median"],
                        "%.4f s" % emb["T_R_median"] if emb else "-",
@@ -127,6 +132,7 @@ def render_summary(records):
                        "%.2f" % paired if paired is not None else "-",
                        "%.2f" % mb_ratio if mb_ratio is not None else "-",
                        "%.2f" % packet if packet is not None else "-",
+                       "%.2f" % origin if origin is not None else "-",
                        speed("kd"), speed("embree"), v["brute_force_mismatches"],
                        v["brute_force_checked"], d.get("total", "-")))
     if ratios:
@@ -146,6 +152,11 @@ def render_summary(records):
         out.append("Packets of 2x2 pixels, paired kd_packet/embree_packet over %d rows: median "
                    "%.2f, range %.2f to %.2f." % (len(packet_all), statistics.median(packet_all),
                                                   min(packet_all), max(packet_all)))
+    if origin_all:
+        out.append("Origin triangle untested (kd_origin), paired kd_origin/Embree over %d rows: "
+                   "median %.2f, range %.2f to %.2f, %d at 0.7 or more." % (
+                       len(origin_all), statistics.median(origin_all), min(origin_all),
+                       max(origin_all), sum(p >= 0.7 for p in origin_all)))
     return "\n".join(out)
 
 
@@ -159,7 +170,7 @@ def main(argv=None):
     p.add_argument("--build_presets", default=BUILD_PRESETS)
     p.add_argument("--render_min_tris", type=int, default=50000)
     p.add_argument("--render_preset", default="sah-packet")
-    p.add_argument("--render_variants", default="kd,kd_mailbox,kd_packet")
+    p.add_argument("--render_variants", default="kd,kd_mailbox,kd_packet,kd_origin")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")

@@ -32,7 +32,9 @@
 // layout: vertices read by triangle index, the traversal before the layout),
 // "kd_mailbox" (leaf layout and mailboxing, traversal.h), "kd_packet" (kd's
 // tree, primary and shadow rays in packets of 2x2 pixels, RenderOptions::packets,
-// cc/kdtree/ray_packet.h); Embree likewise as "embree" (rtcIntersect1 /
+// cc/kdtree/ray_packet.h), "kd_origin" (kd, with shadow and AO rays leaving
+// their origin triangle untested, RenderOptions::skip_origin; validated on
+// every recorded secondary ray); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect4 / rtcOccluded4), with
 // ratios of every kd tracer to each. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
@@ -76,8 +78,8 @@ ABSL_FLAG(std::string, threads, "1,2", "Comma-separated thread counts.");
 ABSL_FLAG(int, tile, 16, "Tile side for threads > 1 (renderer.h; 0 = whole rows).");
 ABSL_FLAG(int, repeats, 5, "Timed rounds per thread count (each renders every tracer once).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
-ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet",
-          "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet.");
+ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet,kd_origin",
+          "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet, kd_origin.");
 ABSL_FLAG(std::string, envs, "",
           "Comma-separated environment files (env_file.h), each applied on top of --preset to "
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
@@ -101,11 +103,12 @@ double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 struct Entry {
-  Entry(std::string n, const Tracer* t, bool p = false)
-      : name(std::move(n)), tracer(t), packets(p) {}
+  Entry(std::string n, const Tracer* t, bool p = false, bool s = false)
+      : name(std::move(n)), tracer(t), packets(p), skip_origin(s) {}
   std::string name;
   const Tracer* tracer;
-  bool packets;  // RenderOptions::packets
+  bool packets;      // RenderOptions::packets
+  bool skip_origin;  // RenderOptions::skip_origin
   std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
   uint64_t rays = 0;
 };
@@ -199,6 +202,8 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       proto.emplace_back(v, &kd_mailbox);
     } else if (v == "kd_packet") {
       proto.emplace_back(v, &kd, true);
+    } else if (v == "kd_origin") {
+      proto.emplace_back(v, &kd, false, true);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
@@ -228,6 +233,23 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
         differ += !(a.tri == b.tri && a.t == b.t && a.u == b.u && a.v == b.v);
       }
       if (differ != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " packets differ from kd"));
+    }
+    if (e.skip_origin) {
+      // Every recorded shadow and AO ray, from its primary hit's triangle,
+      // and the image.
+      uint64_t differ = 0;
+      for (const RayRecord& rec : recorded.rays) {
+        if (rec.kind == RayKind::kPrimary) continue;
+        const uint32_t origin = recorded.primary_hits[rec.pixel].tri;
+        differ += e.tracer->OccludedFrom(rec.ray(), origin) != (rec.hit != 0);
+      }
+      RenderOptions so = ropt;
+      so.skip_origin = true;
+      const RenderResult r = Render(*soup, *e.tracer, view, so);
+      differ += r.s_hit != recorded.s_hit || r.rgb != recorded.rgb;
+      if (differ != 0) {
+        return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd"));
+      }
     }
   }
   uint64_t checked = 0;
@@ -266,6 +288,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
         Entry& e = entries[(k + round) % entries.size()];
         RenderOptions o = topt;
         o.packets = e.packets;
+        o.skip_origin = e.skip_origin;
         const RenderResult r = Render(*soup, *e.tracer, view, o);
         // kd-tree variants must reproduce the validated image exactly (Embree
         // may differ on grazing rays: its disagreements are reported above).

@@ -73,7 +73,8 @@ inline bool WatertightRejects(const WatertightRay& r, const Vec3& a, const Vec3&
 }
 
 template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox>
-Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) {
+Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
+             TraversalCounters* counters) {
   Hit best;
   if (kCount) ++counters->rays;
   Ray ray = input;
@@ -95,6 +96,11 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
   // Triangles wholly behind the origin are rejected in the 4-wide step too
   // (packet_reject.h), as the watertight test rejects them.
   const bool behind = ray.tmin >= 0.0f;
+  // The origin triangle (TraversalOptions::origin_tri), watertight only; the
+  // packets' lane 0 also carries kLastPacket, masked off before comparing.
+  if (kMode != IntersectionMode::kWatertight) origin_tri = kNoHit;
+  const __m128i skip_id = _mm_set1_epi32(static_cast<int>(origin_tri));
+  const __m128i id_bits = _mm_setr_epi32(static_cast<int>(~kLastPacket), -1, -1, -1);
   uint32_t mailbox[kMailboxSlots];
   if (kMailbox) {
     for (int i = 0; i < kMailboxSlots; ++i) mailbox[i] = kNoHit;
@@ -173,6 +179,8 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
             }
           }
         }
+        live &= ~_mm_movemask_ps(
+            _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(ids, id_bits), skip_id)));
         if (kCount) counters->triangle_tests += __builtin_popcount(live);
         live &= ~RejectMask4(wray, packet, behind);
         while (live != 0) {
@@ -209,6 +217,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
       const uint32_t* tris = refs + list + 1;
       for (uint32_t i = 0; i < count; ++i) {
         const uint32_t tri = tris[i];
+        if (tri == origin_tri) continue;
         if (kMailbox) {
           uint32_t& slot = mailbox[tri & (kMailboxSlots - 1)];
           if (slot == tri) continue;
@@ -251,16 +260,18 @@ Hit Traverse(const KdTree& tree, const Ray& input, TraversalCounters* counters) 
 }
 
 template <bool kAnyHit, bool kCount, IntersectionMode kMode>
-Hit DispatchLayout(const KdTree& tree, const Ray& ray, bool mailbox, TraversalCounters* counters) {
+Hit DispatchLayout(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+                   TraversalCounters* counters) {
   // The leaf-ordered layout is used when present and complete (watertight mode
   // reads vertices; the fast mode reads TriAccel by index either way).
   const bool ordered = kMode == IntersectionMode::kWatertight && HasLeafLayout(tree);
+  const uint32_t o = options.origin_tri;
   if (ordered) {
-    return mailbox ? Traverse<kAnyHit, kCount, kMode, true, true>(tree, ray, counters)
-                   : Traverse<kAnyHit, kCount, kMode, true, false>(tree, ray, counters);
+    return options.mailbox ? Traverse<kAnyHit, kCount, kMode, true, true>(tree, ray, o, counters)
+                           : Traverse<kAnyHit, kCount, kMode, true, false>(tree, ray, o, counters);
   }
-  return mailbox ? Traverse<kAnyHit, kCount, kMode, false, true>(tree, ray, counters)
-                 : Traverse<kAnyHit, kCount, kMode, false, false>(tree, ray, counters);
+  return options.mailbox ? Traverse<kAnyHit, kCount, kMode, false, true>(tree, ray, o, counters)
+                         : Traverse<kAnyHit, kCount, kMode, false, false>(tree, ray, o, counters);
 }
 
 template <bool kAnyHit>
@@ -268,15 +279,14 @@ Hit Dispatch(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
              const TraversalOptions& options) {
   if (options.mode == IntersectionMode::kWatertight) {
     return counters != nullptr
-               ? DispatchLayout<kAnyHit, true, IntersectionMode::kWatertight>(
-                     tree, ray, options.mailbox, counters)
-               : DispatchLayout<kAnyHit, false, IntersectionMode::kWatertight>(
-                     tree, ray, options.mailbox, nullptr);
+               ? DispatchLayout<kAnyHit, true, IntersectionMode::kWatertight>(tree, ray, options,
+                                                                             counters)
+               : DispatchLayout<kAnyHit, false, IntersectionMode::kWatertight>(tree, ray, options,
+                                                                              nullptr);
   }
   return counters != nullptr
-             ? DispatchLayout<kAnyHit, true, IntersectionMode::kFast>(tree, ray, options.mailbox,
-                                                                     counters)
-             : DispatchLayout<kAnyHit, false, IntersectionMode::kFast>(tree, ray, options.mailbox,
+             ? DispatchLayout<kAnyHit, true, IntersectionMode::kFast>(tree, ray, options, counters)
+             : DispatchLayout<kAnyHit, false, IntersectionMode::kFast>(tree, ray, options,
                                                                       nullptr);
 }
 

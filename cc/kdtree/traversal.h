@@ -95,6 +95,15 @@ struct TraversalCounters {
 struct TraversalOptions {
   IntersectionMode mode = IntersectionMode::kWatertight;
   bool mailbox = false;
+  // The triangle a secondary ray leaves from (the renderer's primary hit), or
+  // kNoHit. With the watertight test it is not tested: the spawned origin lies
+  // strictly on the ray's side of that triangle's exact plane (spawn.h), so
+  // the line meets the plane only at t < 0 (or beyond the light, for a light
+  // within rounding of the plane), and the watertight test decides t > tmin
+  // exactly: it never reports that triangle. Skipping it saves the full test
+  // of the one triangle that always passes the 2D edge test (about one per
+  // shadow ray). The fast test has no such guarantee: ignored there.
+  uint32_t origin_tri = kNoHit;
 };
 inline constexpr int kMailboxSlots = 8;
 

@@ -14,6 +14,11 @@ Hit KdTreeTracer::Intersect(const Ray& ray) const {
 bool KdTreeTracer::Occluded(const Ray& ray) const {
   return ::kdtree::Occluded(tree_, ray, options_);
 }
+bool KdTreeTracer::OccludedFrom(const Ray& ray, uint32_t origin_tri) const {
+  TraversalOptions o = options_;
+  o.origin_tri = origin_tri;
+  return ::kdtree::Occluded(tree_, ray, o);
+}
 
 void KdTreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
   ::kdtree::IntersectPacket(tree_, rays, n, hits, options_);

@@ -22,6 +22,7 @@ class KdTreeTracer : public Tracer {
   std::string name() const override { return "kdtree"; }
   Hit Intersect(const Ray& ray) const override;
   bool Occluded(const Ray& ray) const override;
+  bool OccludedFrom(const Ray& ray, uint32_t origin_tri) const override;
   // The kd-tree's packet traversal (cc/kdtree/ray_packet.h).
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
   void OccludedPacket(const Ray* rays, int n, bool* occluded) const override;

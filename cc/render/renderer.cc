@@ -144,6 +144,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
 
   // Packets of 2x2 pixels (RenderOptions::packets); never when recording.
   const bool packets = options.packets && !record;
+  const bool skip_origin = options.skip_origin;
   const auto pixel_ray = [&](size_t p) {
     return camera.PrimaryRay(static_cast<int>(p % w), static_cast<int>(p / w));
   };
@@ -240,7 +241,8 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
             const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
             for (int l = 0; l < n_lights; ++l) {
               const Ray ray = ShadowRay(sp, view.lights[l].position);
-              const bool occ = tracer.Occluded(ray);
+              const bool occ =
+                  skip_origin ? tracer.OccludedFrom(ray, hit.tri) : tracer.Occluded(ray);
               occluded[p * n_lights + l] = occ;
               blocked += occ;
               if (record) {
@@ -275,7 +277,8 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
           int open = 0;
           for (int s = 0; s < ao_samples; ++s) {
             const Ray ray = AoRay(sp, static_cast<uint32_t>(p), s, view.ao.distance);
-            const bool occ = tracer.Occluded(ray);
+            const bool occ =
+                skip_origin ? tracer.OccludedFrom(ray, hit.tri) : tracer.Occluded(ray);
             open += !occ;
             if (record) {
               RayRecord rec = MakeRecord(ray, RayKind::kAo, static_cast<uint32_t>(p),

@@ -54,6 +54,12 @@ struct RenderOptions {
   // Embree's rtcIntersect4 / rtcOccluded4). AO rays stay single. Results,
   // hence the image, are the single-ray ones. Ignored when recording rays.
   bool packets = false;
+  // Beyond the report: shadow and AO rays go through Tracer::OccludedFrom with
+  // the primary hit's triangle, which the kd-tree then leaves untested (it can
+  // never hit it: TraversalOptions::origin_tri). Results, hence the image, are
+  // unchanged; packets ignore it. Off: every triangle met is tested, as the
+  // counting pass (traversal_counts.h) counts them.
+  bool skip_origin = false;
   // Keep every ray and its result in RenderResult::rays (primary rays in pixel
   // order, then shadow rays by pixel and light, then AO rays by pixel and
   // sample). Costs time and memory: leave off for timed runs.

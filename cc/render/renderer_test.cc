@@ -157,6 +157,41 @@ TEST(Renderer, PacketsGiveTheSingleRayImage) {
   EXPECT_GT(a.s_hit, 0u);
 }
 
+// Shadow and AO rays that leave their origin triangle untested
+// (RenderOptions::skip_origin) give every recorded result, hence the image.
+TEST(Renderer, SkippingTheOriginTriangleChangesNoResult) {
+  View view = testing::SphereView(90, 70);
+  view.ao.samples = 3;
+  view.ao.distance = 0.3f;
+  const KdTreeTracer kd(Scene().tree);
+  const BruteForce bf(Scene().soup);
+  const RenderResult a = RenderKd(view, 1, true);
+  for (int threads : {1, 2}) {
+    RenderOptions opt;
+    opt.threads = threads;
+    opt.skip_origin = true;
+    opt.record_rays = threads == 1;
+    const RenderResult b = Render(Scene().soup, kd, view, opt);
+    EXPECT_EQ(a.rgb, b.rgb) << threads;
+    EXPECT_EQ(a.s_hit, b.s_hit) << threads;
+    EXPECT_EQ(a.ao_hit, b.ao_hit) << threads;
+    if (threads == 1) {
+      ASSERT_EQ(a.rays.size(), b.rays.size());
+      for (size_t i = 0; i < a.rays.size(); ++i) ASSERT_EQ(a.rays[i].hit, b.rays[i].hit) << i;
+    }
+  }
+  size_t secondary = 0;
+  for (const RayRecord& rec : a.rays) {
+    if (rec.kind == RayKind::kPrimary) continue;
+    ++secondary;
+    const uint32_t origin = a.primary_hits[rec.pixel].tri;
+    ASSERT_EQ(kd.OccludedFrom(rec.ray(), origin), bf.Occluded(rec.ray())) << rec.pixel;
+  }
+  EXPECT_GT(secondary, 1000u);
+  EXPECT_GT(a.s_hit, 0u);
+  EXPECT_GT(a.ao_hit, 0u);
+}
+
 TEST(Renderer, KdTreeAndBruteForceGiveIdenticalHitBuffers) {
   const View view = testing::SphereView(80, 80);
   const BruteForce bf(Scene().soup);

@@ -3,6 +3,7 @@
 #ifndef KDTREE_CC_RENDER_TRACER_H_
 #define KDTREE_CC_RENDER_TRACER_H_
 
+#include <cstdint>
 #include <string>
 
 #include "cc/geometry/ray.h"
@@ -23,6 +24,14 @@ class Tracer {
   virtual Hit Intersect(const Ray& ray) const = 0;
   // True when some triangle is hit with ray.tmin < t <= ray.tmax.
   virtual bool Occluded(const Ray& ray) const = 0;
+  // Occluded for a ray spawned from triangle `origin_tri` (cc/geometry/
+  // spawn.h), which a tracer may leave untested when it can never hit it
+  // (the kd-tree's watertight test: TraversalOptions::origin_tri). The
+  // answer must be Occluded's. Default: Occluded.
+  virtual bool OccludedFrom(const Ray& ray, uint32_t origin_tri) const {
+    (void)origin_tri;
+    return Occluded(ray);
+  }
 
   // The same queries for a packet of n <= kTracerPacket rays (the renderer's
   // 2x2 pixel blocks, RenderOptions::packets). Each result must be what the
