@@ -9,18 +9,15 @@
 #include <utility>
 #include <vector>
 
-#include <xmmintrin.h>
-
 #include "absl/strings/str_cat.h"
 #include "cc/kdtree/binned_sah.h"
 #include "cc/kdtree/build_ref.h"
-#include "cc/kdtree/clipping.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/collapse.h"
 #include "cc/kdtree/hybrid_sah.h"
 #include "cc/kdtree/median_split.h"
 #include "cc/kdtree/parallel_build.h"
-#include "cc/kdtree/perfect_split.h"
+#include "cc/kdtree/partition.h"
 #include "cc/kdtree/pruning.h"
 #include "cc/kdtree/ref_pool.h"
 #include "cc/kdtree/sah_cost.h"
@@ -44,8 +41,6 @@ void ForChunks(size_t n, bool parallel, const F& f) {
     for (size_t c = 0; c < kSetupChunks; ++c) run(c);
   }
 }
-
-const AABB kEverywhere(Vec3(-INFINITY, -INFINITY, -INFINITY), Vec3(INFINITY, INFINITY, INFINITY));
 
 // Depth cap: maxDepth, or 8 + 1.3 log2 N with autoDepth (config.h).
 int EffectiveMaxDepth(const Config& config, size_t n) {
@@ -112,7 +107,7 @@ class Builder {
     tree_->refs.push_back(0);  // the shared list of every empty leaf
     pool_.Reserve(kReserveFactor * n + 1);
     Ref* first = pool_.Reserved(n);
-    if (kIndex) {
+    if constexpr (kIndex) {
       // One element more: the SSE loads of binned_sah.cc read a word past a
       // box.
       box_storage_.resize(n + 1);
@@ -199,15 +194,15 @@ class Builder {
       assert(config_.split_method == Config::SplitMethod::kBinned);  // UsesIndexRefs
       return FindBinnedSahSplit(refs, boxes_, count, box, config_, &scratch_);
     } else {
-    switch (config_.split_method) {
-      case Config::SplitMethod::kSweep:
-        return FindSweepSahSplit(refs, count, box, config_, &sweep_);
-      case Config::SplitMethod::kHybrid:
-        return FindHybridSahSplit(refs, count, box, config_, &scratch_, &sweep_);
-      case Config::SplitMethod::kBinned:
-        break;
-    }
-    return FindBinnedSahSplit(refs, count, box, config_, &scratch_);
+      switch (config_.split_method) {
+        case Config::SplitMethod::kSweep:
+          return FindSweepSahSplit(refs, count, box, config_, &sweep_);
+        case Config::SplitMethod::kHybrid:
+          return FindHybridSahSplit(refs, count, box, config_, &scratch_, &sweep_);
+        case Config::SplitMethod::kBinned:
+          break;
+      }
+      return FindBinnedSahSplit(refs, count, box, config_, &scratch_);
     }
   }
 
@@ -251,158 +246,17 @@ class Builder {
     Ref* const right_first = left_first + count;
     // Stable: no growth below.
     const Ref* const src = external != nullptr ? external : pool_.data() + begin;
-    Cursors out{left_first, right_first};
+    Cursors<Ref> out{left_first, right_first};
     if constexpr (kIndex) {
-      PartitionBoxes(src, count, split, &out);
+      PartitionBoxes(src, count, split, boxes_, config_.seed_compatible, &counters(), &out);
     } else if (config_.use_clipping || config_.perfect_splits) {
-      PartitionClipping(src, count, split, left_box, right_box, &out);
+      PartitionClipping(soup_, config_, src, count, split, left_box, right_box, &counters(), &out);
     } else {
-      PartitionBoxes(src, count, split, &out);
+      PartitionBoxes(src, count, split, boxes_, config_.seed_compatible, &counters(), &out);
     }
     left_count_ = static_cast<size_t>(out.left - left_first);
     const size_t right_count = static_cast<size_t>(out.right - right_first);
     pool_.Resize(pool_.size() + count + right_count);
-  }
-
-  struct Cursors {
-    Ref* left;   // next free slot of the left side
-    Ref* right;  // next free slot of the right side
-  };
-
-  // No clipping: a box goes left when it starts before the plane, right when
-  // it ends after it. Both slots are written and the cursors advance by the
-  // outcome (no branch on it); a box in the plane goes to both sides, or
-  // nowhere in the seed-compatible mode.
-  void PartitionBoxes(const Ref* src, size_t count, const Split& split, Cursors* out) {
-    const int axis = split.axis;
-    const float pos = split.pos;
-    const bool seed = config_.seed_compatible;
-    const AABB* const boxes = boxes_;
-    Ref* left = out->left;
-    Ref* right = out->right;
-    // One reference: left when it starts before the plane, right when it
-    // ends after it; in the plane (lo == hi == pos) both, or none in the
-    // seed-compatible mode.
-    const auto one = [&](const Ref& r) {
-      const float* c = Coords(BoxOf(r, boxes));
-      bool to_left = c[axis] < pos, to_right = c[3 + axis] > pos;
-      if (!to_left && !to_right) {
-        if (seed) {
-          ++counters().lost_planar;
-          return;
-        }
-        to_left = to_right = true;
-      }
-      *left = r;
-      left += to_left;
-      *right = r;
-      right += to_right;
-    };
-    // Four references at a time: both tests in SSE and their masks, so the
-    // cursors advance without a branch on the outcome (the scalar tests
-    // compile to branches that mispredict on about every other reference). A
-    // group with a reference in the plane takes the scalar step.
-    const __m128 vpos = _mm_set1_ps(pos);
-    size_t i = 0;
-    for (; i + 4 <= count; i += 4) {
-      const float* c0 = Coords(BoxOf(src[i], boxes)) + axis;
-      const float* c1 = Coords(BoxOf(src[i + 1], boxes)) + axis;
-      const float* c2 = Coords(BoxOf(src[i + 2], boxes)) + axis;
-      const float* c3 = Coords(BoxOf(src[i + 3], boxes)) + axis;
-      const int to_left =
-          _mm_movemask_ps(_mm_cmplt_ps(_mm_setr_ps(c0[0], c1[0], c2[0], c3[0]), vpos));
-      const int to_right =
-          _mm_movemask_ps(_mm_cmpgt_ps(_mm_setr_ps(c0[3], c1[3], c2[3], c3[3]), vpos));
-      if (__builtin_expect((to_left | to_right) != 0xF, 0)) {
-        for (int k = 0; k < 4; ++k) one(src[i + k]);
-        continue;
-      }
-      for (int k = 0; k < 4; ++k) {
-        *left = src[i + k];
-        left += (to_left >> k) & 1;
-        *right = src[i + k];
-        right += (to_right >> k) & 1;
-      }
-    }
-    for (; i < count; ++i) one(src[i]);
-    out->left = left;
-    out->right = right;
-  }
-
-  // Clipping or perfect splits: straddling triangles are cut (clipping.h,
-  // perfect_split.h); the other references partition as in PartitionBoxes.
-  void PartitionClipping(const BuildRef* src, size_t count, const Split& split,
-                         const AABB& left_box, const AABB& right_box, Cursors* out) {
-    const int axis = split.axis;
-    const float pos = split.pos;
-    // Locals: the stores below could alias the configuration's fields.
-    const bool conservative = !config_.seed_compatible;
-    const bool perfect = config_.perfect_splits, clipping = config_.use_clipping;
-    const bool seed = config_.seed_compatible;
-    for (size_t i = 0; i < count; ++i) {
-      // A reference, not a copy: a copy on the stack read back in 16-byte
-      // halves missed store forwarding on every reference (perf: 40 % of
-      // this loop). The sources are never written here.
-      const BuildRef& r = src[i];
-      const float lo = r.box.lo[axis], hi = r.box.hi[axis];
-      if (perfect && lo < pos && hi > pos) {
-        PerfectSplit(r, left_box, right_box, out);
-        continue;
-      }
-      if (clipping && lo < pos && hi > pos) {
-        AABB lb, rb;
-        // Seed-compatible mode: the parts' boxes are not intersected with the
-        // reference's box (closest to the report's row 18: N_CL 4,595 vs 4,983).
-        const ClipCase c = ClipTriangle(soup_.a(r.tri), soup_.b(r.tri), soup_.c(r.tri), axis, pos,
-                                        conservative ? r.box : kEverywhere, conservative, &lb, &rb);
-        if (c != ClipCase::kNotStraddling) {
-          ++counters().clipped;
-          PushClipped(lb, r.tri, left_box, &out->left);
-          PushClipped(rb, r.tri, right_box, &out->right);
-          continue;
-        }
-      }
-      bool to_left = lo < pos, to_right = hi > pos;
-      if (!to_left && !to_right) {  // lo == hi == pos: lies in the plane
-        if (seed) {
-          ++counters().lost_planar;
-          continue;
-        }
-        to_left = to_right = true;
-      }
-      if (to_left) *out->left++ = r;
-      if (to_right) *out->right++ = r;
-    }
-  }
-
-  // Perfect splits (perfect_split.h): each part's box is the exact box of the
-  // triangle inside the child (and inside the reference's box); a part that
-  // is empty is dropped and counted as pruned_box. N_CL counts a reference
-  // that became two.
-  void PerfectSplit(const BuildRef& r, const AABB& left_box, const AABB& right_box,
-                    Cursors* out) {
-    const Vec3 &a = soup_.a(r.tri), &b = soup_.b(r.tri), &c = soup_.c(r.tri);
-    AABB lb, rb;
-    const bool in_left = ClipTriangleToBox(a, b, c, Intersect(r.box, left_box), &lb);
-    const bool in_right = ClipTriangleToBox(a, b, c, Intersect(r.box, right_box), &rb);
-    if (in_left && in_right) ++counters().clipped;
-    if (!in_left && !in_right) ++counters().pruned_box;
-    if (in_left) *out->left++ = BuildRef{lb, r.tri};
-    if (in_right) *out->right++ = BuildRef{rb, r.tri};
-  }
-
-  // One part of a clipped triangle into its side (*cursor), or dropped as
-  // pruned when pruning is on and the part misses its child.
-  void PushClipped(const AABB& clipped, uint32_t tri, const AABB& child, BuildRef** cursor) {
-    AABB b = clipped;
-    if (config_.use_pruning) {
-      b = Intersect(clipped, child);
-      if (!b.Valid()) {
-        ++counters().pruned_box;
-        return;
-      }
-    }
-    *(*cursor)++ = BuildRef{b, tri};
   }
 
   void MakeLeaf(uint32_t node, const Ref* leaf_refs, size_t n, const AABB& box) {
