@@ -151,17 +151,11 @@ void SweepAxis(const Ref* refs, const AABB* boxes, size_t n, const AABB& box, in
   const __m128 last = _mm_set1_ps(static_cast<float>(bins - 1));
   size_t i = 0;
   for (; i + 4 <= n; i += 4) {
-    // Coordinate `axis` of box.lo of references i..i+3; box.hi's is 3 words
-    // further.
-    const float* c0 = Coords(BoxOf(refs[i], boxes)) + axis;
-    const float* c1 = Coords(BoxOf(refs[i + 1], boxes)) + axis;
-    const float* c2 = Coords(BoxOf(refs[i + 2], boxes)) + axis;
-    const float* c3 = Coords(BoxOf(refs[i + 3], boxes)) + axis;
+    __m128 box_lo, box_hi;
+    LoadAxis4(refs + i, boxes, axis, &box_lo, &box_hi);
     alignas(16) int l[4], h[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(l),
-                    BinOf4(_mm_setr_ps(c0[0], c1[0], c2[0], c3[0]), vlo, fbins, vext, last));
-    _mm_store_si128(reinterpret_cast<__m128i*>(h),
-                    BinOf4(_mm_setr_ps(c0[3], c1[3], c2[3], c3[3]), vlo, fbins, vext, last));
+    _mm_store_si128(reinterpret_cast<__m128i*>(l), BinOf4(box_lo, vlo, fbins, vext, last));
+    _mm_store_si128(reinterpret_cast<__m128i*>(h), BinOf4(box_hi, vlo, fbins, vext, last));
     ++st[l[0]];
     ++st[bins + l[1]];
     ++st[2 * bins + l[2]];

@@ -9,6 +9,8 @@
 #ifndef KDTREE_CC_KDTREE_BUILD_REF_H_
 #define KDTREE_CC_KDTREE_BUILD_REF_H_
 
+#include <xmmintrin.h>
+
 #include <cstdint>
 
 #include "cc/geometry/aabb.h"
@@ -27,6 +29,19 @@ inline const AABB& BoxOf(const BuildRef& r, const AABB* /*boxes*/) { return r.bo
 inline const AABB& BoxOf(IndexRef r, const AABB* boxes) { return boxes[r]; }
 inline uint32_t TriOf(const BuildRef& r) { return r.tri; }
 inline uint32_t TriOf(IndexRef r) { return r; }
+
+// Coordinate `axis` of the boxes of refs[0..3]: their lo corners in *lo and
+// their hi corners in *hi, lane i for reference i (the binning and the
+// partition of four references at a time).
+template <class Ref>
+inline void LoadAxis4(const Ref* refs, const AABB* boxes, int axis, __m128* lo, __m128* hi) {
+  const float* c0 = Coords(BoxOf(refs[0], boxes)) + axis;
+  const float* c1 = Coords(BoxOf(refs[1], boxes)) + axis;
+  const float* c2 = Coords(BoxOf(refs[2], boxes)) + axis;
+  const float* c3 = Coords(BoxOf(refs[3], boxes)) + axis;
+  *lo = _mm_setr_ps(c0[0], c1[0], c2[0], c3[0]);
+  *hi = _mm_setr_ps(c0[3], c1[3], c2[3], c3[3]);
+}
 
 // A split plane chosen by a strategy; found == false means "make a leaf".
 struct Split {

@@ -79,14 +79,10 @@ void PartitionBoxes(const Ref* src, size_t count, const Split& split, const AABB
   const __m128 vpos = _mm_set1_ps(pos);
   size_t i = 0;
   for (; i + 4 <= count; i += 4) {
-    const float* c0 = Coords(BoxOf(src[i], boxes)) + axis;
-    const float* c1 = Coords(BoxOf(src[i + 1], boxes)) + axis;
-    const float* c2 = Coords(BoxOf(src[i + 2], boxes)) + axis;
-    const float* c3 = Coords(BoxOf(src[i + 3], boxes)) + axis;
-    const int to_left =
-        _mm_movemask_ps(_mm_cmplt_ps(_mm_setr_ps(c0[0], c1[0], c2[0], c3[0]), vpos));
-    const int to_right =
-        _mm_movemask_ps(_mm_cmpgt_ps(_mm_setr_ps(c0[3], c1[3], c2[3], c3[3]), vpos));
+    __m128 lo, hi;
+    LoadAxis4(src + i, boxes, axis, &lo, &hi);
+    const int to_left = _mm_movemask_ps(_mm_cmplt_ps(lo, vpos));
+    const int to_right = _mm_movemask_ps(_mm_cmpgt_ps(hi, vpos));
     if (__builtin_expect((to_left | to_right) != 0xF, 0)) {
       for (int k = 0; k < 4; ++k) one(src[i + k]);
       continue;
