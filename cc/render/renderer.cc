@@ -144,7 +144,12 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
 
   // Packets of 2x2 pixels (RenderOptions::packets); never when recording.
   const bool packets = options.packets && !record;
+  // A shadow or AO ray leaving the surface of primary hit `hit`
+  // (RenderOptions::skip_origin: the tracer may leave that triangle untested).
   const bool skip_origin = options.skip_origin;
+  const auto secondary_occluded = [&](const Ray& ray, const Hit& hit) {
+    return skip_origin ? tracer.OccludedFrom(ray, hit.tri) : tracer.Occluded(ray);
+  };
   const auto pixel_ray = [&](size_t p) {
     return camera.PrimaryRay(static_cast<int>(p % w), static_cast<int>(p / w));
   };
@@ -241,8 +246,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
             const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
             for (int l = 0; l < n_lights; ++l) {
               const Ray ray = ShadowRay(sp, view.lights[l].position);
-              const bool occ =
-                  skip_origin ? tracer.OccludedFrom(ray, hit.tri) : tracer.Occluded(ray);
+              const bool occ = secondary_occluded(ray, hit);
               occluded[p * n_lights + l] = occ;
               blocked += occ;
               if (record) {
@@ -277,8 +281,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
           int open = 0;
           for (int s = 0; s < ao_samples; ++s) {
             const Ray ray = AoRay(sp, static_cast<uint32_t>(p), s, view.ao.distance);
-            const bool occ =
-                skip_origin ? tracer.OccludedFrom(ray, hit.tri) : tracer.Occluded(ray);
+            const bool occ = secondary_occluded(ray, hit);
             open += !occ;
             if (record) {
               RayRecord rec = MakeRecord(ray, RayKind::kAo, static_cast<uint32_t>(p),
