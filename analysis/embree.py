@@ -34,6 +34,24 @@ def _sum(recs, col):
     return total
 
 
+def embree_medians(df, scene):
+    """Embree's T_B and T_R on a scene: the medians of its runs beside every
+    kd-tree run (the nine and the variants beyond them), and their count;
+    (None, None, 0) without one."""
+    runs = []
+    for v in kr.VARIANTS + kr.BEYOND:
+        if (scene, v) in df.index:
+            r = df.loc[(scene, v)]
+            if r["embree_T_R"] is not None and r["embree_T_R"] == r["embree_T_R"]:
+                runs.append(r)
+    if not runs:
+        return None, None, 0
+    t_b = [float(r["embree_T_B"]) for r in runs
+           if r["embree_T_B"] is not None and r["embree_T_B"] == r["embree_T_B"]]
+    return (statistics.median(t_b) if t_b else None,
+            statistics.median(float(r["embree_T_R"]) for r in runs), len(runs))
+
+
 def rows(df):
     out = []
     for scene in kr.scenes_in_order(df):
@@ -52,17 +70,13 @@ def rows(df):
                 beyond = b
         # Embree ran beside every kd-tree run of the scene; its times are the
         # medians of those runs (see the module doc).
-        runs = [r for _, r in recs] + ([beyond] if beyond is not None else [])
-        emb_t_r = statistics.median(float(r["embree_T_R"]) for r in runs)
-        t_b = [float(r["embree_T_B"]) for r in runs
-               if r["embree_T_B"] is not None and r["embree_T_B"] == r["embree_T_B"]]
-        emb_t_b = statistics.median(t_b) if t_b else None
+        emb_t_b, emb_t_r, n_runs = embree_medians(df, scene)
         out.append({
             "scene": scene, "n_tri": best["n_tri"], "best_variant": best_v,
             "best_T_R": best["T_R"], "best_T_B": best["T_B"],
             "final_T_R": None if final is None else final["T_R"],
             "embree_T_B": emb_t_b, "embree_T_R": emb_t_r,
-            "embree_runs": len(runs),
+            "embree_runs": n_runs,
             "ratio_best": emb_t_r / best["T_R"],
             "ratio_final": None if final is None else emb_t_r / final["T_R"],
             "beyond_T_B": None if beyond is None else beyond["T_B"],

@@ -176,6 +176,39 @@ class KdtreeAnalysisTest(unittest.TestCase):
         # Not a run of the report's tables.
         self.assertEqual(kdtree_tables.generate(self.ctx)["NumKdRuns"][0], "27")
 
+    def test_binned_tree_against_embree_and_the_report(self):
+        from analysis import embree_build
+        # Embree beside three runs: T_B 0.1, 0.3, 0.2 (median 0.2), T_R 0.4, 0.2,
+        # 0.3 (median 0.3).
+        for variant, t_b, t_r, e_t_b, e_t_r in (
+                ("binning-8-driving", 0.8, 0.6, 0.1, 0.4),
+                ("clipping", 1.0, 0.5, 0.3, 0.2),
+                ("sah-packet-binned", 0.4, 0.5, 0.2, 0.3)):
+            self.append_run(record("alpha", variant, T_B=t_b, T_R=t_r),
+                            {"T_B": e_t_b, "T_R": e_t_r})
+        # beta: the binned tree builds faster than binning-8-driving's 0.5 s
+        # (the fixture's) but renders slower than its 1.0 s.
+        self.append_run(record("beta", "sah-packet-binned", T_B=0.25, T_R=1.25),
+                        {"T_B": 0.5, "T_R": 0.5})
+        macros = embree_build.generate(self.ctx)
+        rows = {r["scene"]: r for r in embree_build.rows(
+            kr.frame(self.ctx.results(kr.KDTREE_FILE), self.ctx.manifest))}
+        self.assertEqual(sorted(rows), ["alpha", "beta"])
+        self.assertAlmostEqual(rows["alpha"]["embree_T_B"], 0.2)
+        self.assertAlmostEqual(rows["alpha"]["embree_T_R"], 0.3)
+        self.assertAlmostEqual(rows["alpha"]["report_T_B"], 0.8)
+        self.assertEqual(macros["BinnedScenes"][0], "2")
+        # Build Embree/binned: alpha 0.2 / 0.4 = 0.5, beta 0.5 / 0.25 = 2.
+        self.assertEqual(macros["BinnedBuildOverEmbreeMedian"][0], "1.25")
+        # Against binning-8-driving: alpha builds 2x and renders 1.2x faster.
+        self.assertEqual(macros["BinnedBeatsReportBoth"][0], "1")
+        self.assertEqual(macros["BinnedComparedWithReport"][0], "2")
+        text = self.read("embree_build.tex")
+        self.assertIn("tab:embree-build", text)
+        self.assertIn("2.00", text)  # alpha's build binned/B8D, 0.8 / 0.4
+        # The variant beyond the report is not a run of the report's tables.
+        self.assertEqual(kdtree_tables.generate(self.ctx)["NumKdRuns"][0], "27")
+
     def test_figures_are_written(self):
         kdtree_figures.generate(self.ctx)
         for name in ("fig1_build.pdf", "fig2_render.pdf"):

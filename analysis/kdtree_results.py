@@ -23,8 +23,9 @@ TITLES = {
 }
 # Beyond the report (experiments/matrix.json, beyond_variants): run by the
 # matrix for the comparison with Embree, not part of the report's tables.
-BEYOND = ["sah-packet"]
+BEYOND = ["sah-packet", "sah-packet-binned"]
 TITLES["sah-packet"] = "SAH per packet of 4"
+TITLES["sah-packet-binned"] = "SAH per packet of 4, binned"
 # The report's three groups of three columns.
 GROUPS = [VARIANTS[0:3], VARIANTS[3:6], VARIANTS[6:9]]
 

@@ -27,6 +27,7 @@ from analysis import accuracy  # noqa: E402
 from analysis import claims  # noqa: E402
 from analysis import context  # noqa: E402
 from analysis import embree  # noqa: E402
+from analysis import embree_build  # noqa: E402
 from analysis import figures  # noqa: E402
 from analysis import gallery  # noqa: E402
 from analysis import kdtree_figures  # noqa: E402
@@ -51,6 +52,7 @@ GENERATORS = [
     kdtree_figures,
     claims,
     embree,
+    embree_build,
     accuracy,
     robustness,
     gallery,

@@ -28,7 +28,9 @@ EXPECTED_MACROS = [
     "EmbreePacketRatioMin", "EmbreePacketRatioMax", "EmbreePacketBigScenes",
     "EmbreePacketBigAtLeastSeventy", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
-    "GalleryImages"
+    "BinnedScenes", "BinnedBuildOverEmbreeMedian", "BinnedPerfOverEmbreeMedian",
+    "BinnedBuildOverReportMedian", "BinnedPerfOverReportMedian", "BinnedBeatsReportBoth",
+    "BinnedComparedWithReport", "GalleryImages"
 ] + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS
 
 

@@ -36,6 +36,10 @@ class BenchTest(unittest.TestCase):
         self.assertIn("1.000 s (0.800), 2.00 (2.50)", row)  # median, fastest; Mtri/s
         self.assertIn("0.500 s (0.400), 4.00 (5.00)", row)
         self.assertTrue(row.endswith("| 2.00x | 1.500 s / 0.700 s |"))
+        # binning-32's target is 3 Mtri/s: 2.00 misses it.
+        self.assertIn("binning-32: 1 thread median 2.00 Mtri/s (2.00 to 2.00), 0 of 1 at 3.0 "
+                      "or more; 2 threads 2.00x median (2.00 to 2.00), 1 of 1 at 1.7x or more.",
+                      text)
 
     def test_render_summary_gives_ratio_to_embree(self):
         def rec(threads, kd, embree):

@@ -26,12 +26,14 @@
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/env_file.h"
 #include "cc/kdtree/stats.h"
 #include "cc/kdtree/traversal.h"
 
@@ -39,6 +41,10 @@ ABSL_FLAG(std::string, mesh, "", "mesh file to build on");
 ABSL_FLAG(std::string, name, "", "scene name for the records (default: the file name)");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "triangle-soup cache ('' for none)");
 ABSL_FLAG(std::string, presets, "", "comma-separated presets (default: the report's nine)");
+ABSL_FLAG(std::string, envs, "",
+          "comma-separated environment files: each is also built on top of every preset, "
+          "recorded as preset 'PRESET+FILE' (for tuning a configuration before it becomes a "
+          "preset)");
 ABSL_FLAG(int, repeats, 5, "builds per preset; the median is reported");
 ABSL_FLAG(std::string, threads, "1",
           "comma-separated build thread counts (Config::build_threads; 0 = all cores); "
@@ -108,12 +114,28 @@ int Run() {
   std::vector<Hit> reference;
   for (const Ray& r : rays) reference.push_back(brute.Intersect(r));
 
+  // (name, configuration): each preset, then each --envs file on top of it.
+  std::vector<std::pair<std::string, Config>> configs;
   for (const std::string& preset : presets) {
     absl::StatusOr<Config> config = Preset(preset);
     if (!config.ok()) {
       std::fprintf(stderr, "build_bench: %s\n", config.status().ToString().c_str());
       return 2;
     }
+    configs.emplace_back(preset, *config);
+    for (const std::string& path : std::vector<std::string>(
+             absl::StrSplit(absl::GetFlag(FLAGS_envs), ',', absl::SkipEmpty()))) {
+      absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, *config);
+      if (!env.ok()) {
+        std::fprintf(stderr, "build_bench: %s\n", env.status().ToString().c_str());
+        return 2;
+      }
+      configs.emplace_back(absl::StrCat(preset, "+", path.substr(path.find_last_of('/') + 1)),
+                           env->config);
+    }
+  }
+  for (const auto& [preset, cfg] : configs) {
+    const Config* config = &cfg;
     // Validate before timing.
     absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
     if (!tree.ok()) {

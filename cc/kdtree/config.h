@@ -117,7 +117,10 @@ absl::StatusOr<Config> Preset(const std::string& name);
 // "sah-hybrid": hybrid binning/sweep, clipping and pruning;
 // "sah-perfect": hybrid with perfect splits, pruning and collapse;
 // "sah-packet": sah-hybrid with the SAH counted in packets of 4 (sahPacket)
-//   and K_T 45 (traversalCost; tuned on the render benchmark, config.cc).
+//   and K_T 45 (traversalCost; tuned on the render benchmark, config.cc);
+// "sah-packet-binned": sah-packet's cost model with 16 bins on the driving
+//   axis (the report's cheapest search), no clipping: the fast binned build;
+// "sah-packet-binned-cp": the same with the report's clipping and pruning.
 const std::vector<std::string>& ExtraPresetNames();
 // PresetNames() followed by ExtraPresetNames().
 std::vector<std::string> AllPresetNames();

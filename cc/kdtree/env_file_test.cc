@@ -106,7 +106,9 @@ TEST(EnvFile, ErrorsNameFileLineAndReason) {
 
 TEST(EnvFile, ExperimentPresetFilesEqualTheNamedPresets) {
   std::vector<std::string> names = PresetNames();
-  names.push_back("sah-packet");  // the matrix's variant beyond the report
+  // The matrix's variants beyond the report.
+  names.push_back("sah-packet");
+  names.push_back("sah-packet-binned");
   for (const std::string& name : names) {
     absl::StatusOr<EnvResult> r = LoadEnvironmentFile("experiments/presets/" + name + ".env");
     ASSERT_TRUE(r.ok()) << r.status();

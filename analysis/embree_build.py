@@ -1,0 +1,117 @@
+"""Build time against Embree: our fast binned tree beside the report's.
+
+Per scene with a run of sah-packet-binned (the full SAH counted per packet of
+four, 16 bins on the driving axis, no clipping: cc/kdtree/config.h), its
+build and render times beside the report's fastest-building binned variant
+(binning-8-driving) and Embree 3's MEDIUM build on the same rays, one thread.
+Embree's times are the medians of its runs on the scene, one beside each
+kd-tree run (embree.embree_medians, as in Table tab:embree).
+
+Output: embree_build.tex and macros (medians of the ratios, and the number
+of scenes where the binned tree both builds and renders faster than the
+report's binning-8-driving).
+"""
+
+import statistics
+
+from analysis import embree
+from analysis import kdtree_results as kr
+from analysis import latex
+
+FAST = "sah-packet-binned"
+REPORT = "binning-8-driving"
+
+
+def _num(v):
+    return v is not None and v == v
+
+
+def rows(df):
+    out = []
+    for scene in kr.scenes_in_order(df):
+        if (scene, FAST) not in df.index:
+            continue
+        fast = df.loc[(scene, FAST)]
+        if not (_num(fast["T_B"]) and _num(fast["T_R"])):
+            continue
+        report = df.loc[(scene, REPORT)] if (scene, REPORT) in df.index else None
+        emb_t_b, emb_t_r, _ = embree.embree_medians(df, scene)
+        row = {"scene": scene, "n_tri": fast["n_tri"],
+               "T_B": float(fast["T_B"]), "T_R": float(fast["T_R"]),
+               "report_T_B": None, "report_T_R": None,
+               "embree_T_B": emb_t_b, "embree_T_R": emb_t_r}
+        if report is not None and _num(report["T_B"]) and _num(report["T_R"]):
+            row["report_T_B"] = float(report["T_B"])
+            row["report_T_R"] = float(report["T_R"])
+        out.append(row)
+    return out
+
+
+def _ratio(a, b):
+    """a / b, or None when either is missing or b is 0."""
+    if a is None or b is None or not b:
+        return None
+    return a / b
+
+
+def render(data):
+    header = ["Scene", "$N_{tri}$", "$T_B$ Embree", "$T_B$ B8D", "$T_B$ SAH-4 binned",
+              "build Embree/binned", "$T_R$ Embree", "$T_R$ B8D", "$T_R$ SAH-4 binned",
+              "perf binned/Embree", "binned/B8D build", "binned/B8D perf"]
+
+    def cell(v, digits=3):
+        return latex.fmt_float(v, digits) if v is not None else latex.DASH
+
+    def ratio(v):
+        return "%.2f" % v if v is not None else latex.DASH
+
+    body = []
+    for r in data:
+        body.append([
+            latex.escape(r["scene"]), latex.fmt_int(int(r["n_tri"])),
+            cell(r["embree_T_B"]), cell(r["report_T_B"]), cell(r["T_B"]),
+            ratio(_ratio(r["embree_T_B"], r["T_B"])),
+            cell(r["embree_T_R"]), cell(r["report_T_R"]), cell(r["T_R"]),
+            ratio(_ratio(r["embree_T_R"], r["T_R"])),
+            ratio(_ratio(r["report_T_B"], r["T_B"])),
+            ratio(_ratio(r["report_T_R"], r["T_R"]))])
+    if not body:
+        body = [["\\emph{no runs of sah-packet-binned}"] + [""] * (len(header) - 1)]
+    caption = ("Build and render time of our fast binned tree (preset "
+               "\\texttt{sah-packet-binned}: the full SAH counted per packet of "
+               "4, $K_T = 45$, 16 bins on the driving axis, no clipping), of the "
+               "report's fastest-building binned variant (B8D: binning 8, "
+               "driving axis) and of Embree 3 (MEDIUM build), one thread, on the "
+               "same rays. $T_B$ is mesh in memory to traversable tree. Ratios "
+               "above 1 favour the binned tree: build Embree/binned is Embree's "
+               "build time over ours; perf binned/Embree is Embree's render time "
+               "over ours; binned/B8D divides the report variant's time by ours.")
+    return latex.booktabs(header, body, align="lrrrrrrrrrrr", caption=caption,
+                          label="tab:embree-build", size="scriptsize")
+
+
+def generate(ctx):
+    df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
+    data = rows(df)
+    ctx.write("embree_build.tex", render(data))
+
+    def med(values):
+        values = [v for v in values if v is not None]
+        return ("%.2f" % statistics.median(values) if values else latex.DASH, True)
+
+    build_emb = [_ratio(r["embree_T_B"], r["T_B"]) for r in data]
+    perf_emb = [_ratio(r["embree_T_R"], r["T_R"]) for r in data]
+    build_rep = [_ratio(r["report_T_B"], r["T_B"]) for r in data]
+    perf_rep = [_ratio(r["report_T_R"], r["T_R"]) for r in data]
+    both = sum(1 for b, p in zip(build_rep, perf_rep)
+               if b is not None and p is not None and b > 1 and p > 1)
+    compared = sum(1 for b, p in zip(build_rep, perf_rep) if b is not None and p is not None)
+    return {
+        "BinnedScenes": (str(len(data)), False),
+        "BinnedBuildOverEmbreeMedian": med(build_emb),
+        "BinnedPerfOverEmbreeMedian": med(perf_emb),
+        "BinnedBuildOverReportMedian": med(build_rep),
+        "BinnedPerfOverReportMedian": med(perf_rep),
+        "BinnedBeatsReportBoth": (str(both), False),
+        "BinnedComparedWithReport": (str(compared), False),
+    }
