@@ -54,7 +54,7 @@ ROW18_TMP="$(mktemp -d)"
 mv "$RESULTS/row18.jsonl.new" "$RESULTS/row18.jsonl"
 rm -rf "$ROW18_TMP"
 
-step "kd-tree matrix: the report's nine variants and sah-packet on every scene ($PROFILE)"
+step "kd-tree matrix: the report's nine variants, sah-packet and sah-packet-binned on every scene ($PROFILE)"
 # Resumable: finished (scene, variant) runs are not rerun.
 "$PY" experiments/run_matrix.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \
   --out "$OUT"

@@ -165,12 +165,14 @@ absl::StatusOr<Config> Preset(const std::string& name) {
       // sah-packet's cost model (packets of 4, K_T 45) with the report's
       // cheapest split search, 16 bins on the driving axis only: the fast
       // builds. The cost termination stops where a packet of 4 no longer pays
-      // for a level, so the trees hold a third of binning-8-driving's nodes
-      // and half its references, and every level of the build sees fewer.
-      // Measured (build_bench --envs, then these presets): rungholt-1m and
-      // hairball-1m build 1.4-1.5x faster than binning-8-driving and render
-      // 1.2-1.4x faster (render_bench, same rays). -cp adds the report's
-      // clipping and pruning.
+      // for a level, so the trees hold a sixth to a quarter of
+      // binning-8-driving's nodes and 40-50 % of its references, and most
+      // levels of the build see fewer. Measured (build_bench, one thread):
+      // 1.2-1.9x faster builds than binning-8-driving on the five scenes of
+      // 1.5-2.9 M triangles, about as fast on asian-dragon (7.2 M, a dense
+      // scan: 2 references per triangle, 25 levels on average); renders
+      // 1.24-1.49x faster on bunny, rungholt-1m and hairball-1m (render_bench
+      // --envs, same rays). -cp adds the report's clipping and pruning.
       s.use_driving_axis = true;
       s.bins = 16;
       s.sah_packet = 4;

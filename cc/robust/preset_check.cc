@@ -17,6 +17,9 @@ namespace robust {
 std::vector<std::string> CheckedPresets() {
   std::vector<std::string> names = {"default"};
   for (const std::string& n : PresetNames()) names.push_back(n);
+  // The trees beyond the report that the matrix runs (experiments/matrix.json).
+  names.push_back("sah-packet");
+  names.push_back("sah-packet-binned");
   return names;
 }
 

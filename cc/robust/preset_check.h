@@ -38,8 +38,9 @@ struct CheckResult {
   bool informational = false;       // not required to pass (seed-compatible)
 };
 
-// "default" (Config(): the report's environment file) followed by the nine
-// PresetNames(); these must all pass.
+// "default" (Config(): the report's environment file), the nine
+// PresetNames(), then the two trees beyond the report that the experiment
+// matrix runs (sah-packet, sah-packet-binned); these must all pass.
 std::vector<std::string> CheckedPresets();
 // Config for a name from CheckedPresets() or "pruning-seed".
 absl::StatusOr<Config> ConfigFor(const std::string& name);
