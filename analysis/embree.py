@@ -29,7 +29,7 @@ def _sum(recs, col):
     total = 0
     for _, r in recs:
         v = r[col] if col in r else None
-        if v is not None and v == v:
+        if kr.present(v):
             total += int(v)
     return total
 
@@ -42,12 +42,11 @@ def embree_medians(df, scene):
     for v in kr.VARIANTS + kr.BEYOND:
         if (scene, v) in df.index:
             r = df.loc[(scene, v)]
-            if r["embree_T_R"] is not None and r["embree_T_R"] == r["embree_T_R"]:
+            if kr.present(r["embree_T_R"]):
                 runs.append(r)
     if not runs:
         return None, None, 0
-    t_b = [float(r["embree_T_B"]) for r in runs
-           if r["embree_T_B"] is not None and r["embree_T_B"] == r["embree_T_B"]]
+    t_b = [float(r["embree_T_B"]) for r in runs if kr.present(r["embree_T_B"])]
     return (statistics.median(t_b) if t_b else None,
             statistics.median(float(r["embree_T_R"]) for r in runs), len(runs))
 
@@ -57,8 +56,7 @@ def rows(df):
     for scene in kr.scenes_in_order(df):
         recs = [(v, df.loc[(scene, v)]) for v in kr.VARIANTS
                 if (scene, v) in df.index]
-        recs = [(v, r) for v, r in recs
-                if r["embree_T_R"] is not None and r["embree_T_R"] == r["embree_T_R"]]
+        recs = [(v, r) for v, r in recs if kr.present(r["embree_T_R"])]
         if not recs:
             continue
         best_v, best = min(recs, key=lambda vr: vr[1]["T_R"])
@@ -66,7 +64,7 @@ def rows(df):
         beyond = None
         if (scene, BEYOND) in df.index:
             b = df.loc[(scene, BEYOND)]
-            if b["embree_T_R"] is not None and b["embree_T_R"] == b["embree_T_R"]:
+            if kr.present(b["embree_T_R"]):
                 beyond = b
         # Embree ran beside every kd-tree run of the scene; its times are the
         # medians of those runs (see the module doc).

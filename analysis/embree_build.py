@@ -22,17 +22,13 @@ FAST = "sah-packet-binned"
 REPORT = "binning-8-driving"
 
 
-def _num(v):
-    return v is not None and v == v
-
-
 def rows(df):
     out = []
     for scene in kr.scenes_in_order(df):
         if (scene, FAST) not in df.index:
             continue
         fast = df.loc[(scene, FAST)]
-        if not (_num(fast["T_B"]) and _num(fast["T_R"])):
+        if not (kr.present(fast["T_B"]) and kr.present(fast["T_R"])):
             continue
         report = df.loc[(scene, REPORT)] if (scene, REPORT) in df.index else None
         emb_t_b, emb_t_r, _ = embree.embree_medians(df, scene)
@@ -40,7 +36,7 @@ def rows(df):
                "T_B": float(fast["T_B"]), "T_R": float(fast["T_R"]),
                "report_T_B": None, "report_T_R": None,
                "embree_T_B": emb_t_b, "embree_T_R": emb_t_r}
-        if report is not None and _num(report["T_B"]) and _num(report["T_R"]):
+        if report is not None and kr.present(report["T_B"]) and kr.present(report["T_R"]):
             row["report_T_B"] = float(report["T_B"])
             row["report_T_R"] = float(report["T_R"])
         out.append(row)

@@ -62,6 +62,12 @@ FIELDS = {
 }
 
 
+def present(value):
+    """True for a number in a frame cell: not None (field absent) and not NaN
+    (pandas' fill for a missing cell)."""
+    return value is not None and value == value
+
+
 def _get(rec, path):
     cur = rec
     for part in path.split("."):

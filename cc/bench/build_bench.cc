@@ -134,10 +134,9 @@ int Run() {
                            env->config);
     }
   }
-  for (const auto& [preset, cfg] : configs) {
-    const Config* config = &cfg;
+  for (const auto& [preset, config] : configs) {
     // Validate before timing.
-    absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
+    absl::StatusOr<KdTree> tree = BuildKdTree(*soup, config);
     if (!tree.ok()) {
       std::fprintf(stderr, "build_bench: %s: %s\n", preset.c_str(),
                    tree.status().ToString().c_str());
@@ -173,7 +172,7 @@ int Run() {
     const int warmup = absl::GetFlag(FLAGS_warmup);
     for (int r = -warmup; r < absl::GetFlag(FLAGS_repeats); ++r) {
       for (size_t k = 0; k < thread_counts.size(); ++k) {
-        Config c = *config;
+        Config c = config;
         c.build_threads = thread_counts[k];
         absl::StatusOr<KdTree> t = BuildKdTree(*soup, c);
         // Every timed build must write the validated tree (the parallel
