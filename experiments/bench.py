@@ -113,10 +113,12 @@ def render_summary(records):
         rows.setdefault((r["scene"], r["n_tri"], r["preset"]), {})[r["threads"]] = r
     out = ["| scene | triangles | preset | kd T_R, 1 thread | Embree T_R | kd/Embree "
            "| paired | with mailbox | packets: kd/Embree, paired "
-           "| origin triangle untested: kd/Embree, paired | kd 2-thread speed-up "
-           "| Embree 2-thread speed-up | validation |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "| origin triangle untested: kd/Embree, paired "
+           "| packets and origin untested: kd/Embree, kd/Embree packets, paired "
+           "| kd 2-thread speed-up | Embree 2-thread speed-up | validation |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     ratios, best, paired_all, packet_all, origin_all = [], [], [], [], []
+    both_all, both_packet_all = [], []
     for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         one, two = by_t.get(1), by_t.get(2)
         if one is None:
@@ -138,6 +140,14 @@ def render_summary(records):
         origin = one.get("ratio_kd_over_embree", {}).get("kd_origin", {}).get("paired")
         if origin is not None:
             origin_all.append(origin)
+        # Both (kd_packet_origin), over Embree's single rays and its packets.
+        both = one.get("ratio_kd_over_embree", {}).get("kd_packet_origin", {}).get("paired")
+        both_packet = ((one.get("ratio_kd_over_embree_packet") or {})
+                       .get("kd_packet_origin", {}).get("paired"))
+        if both is not None:
+            both_all.append(both)
+        if both_packet is not None:
+            both_packet_all.append(both_packet)
         if ratio is not None:
             ratios.append(ratio)
             best.append(max(ratio, mb_ratio or 0))
@@ -150,7 +160,8 @@ def render_summary(records):
 
         v = one["validation"]
         d = v.get("embree_disagreements") or {}
-        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %s | %d/%d brute-force "
+        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d/%d "
+                   "brute-force "
                    "mismatches, %s Embree disagreements |" % (
                        scene, format(n, ","), preset, kd["T_R_median"],
                        "%.4f s" % emb["T_R_median"] if emb else "-",
@@ -159,6 +170,8 @@ def render_summary(records):
                        "%.2f" % mb_ratio if mb_ratio is not None else "-",
                        "%.2f" % packet if packet is not None else "-",
                        "%.2f" % origin if origin is not None else "-",
+                       "%s, %s" % tuple("%.2f" % x if x is not None else "-"
+                                        for x in (both, both_packet)),
                        speed("kd"), speed("embree"), v["brute_force_mismatches"],
                        v["brute_force_checked"], d.get("total", "-")))
     if ratios:
@@ -183,6 +196,16 @@ def render_summary(records):
                    "median %.2f, range %.2f to %.2f, %d at 0.7 or more." % (
                        len(origin_all), statistics.median(origin_all), min(origin_all),
                        max(origin_all), sum(p >= 0.7 for p in origin_all)))
+    if both_all:
+        line = ("Packets with the origin triangle untested (kd_packet_origin), paired "
+                "kd_packet_origin/Embree over %d rows: median %.2f, range %.2f to %.2f, %d at "
+                "0.7 or more" % (len(both_all), statistics.median(both_all), min(both_all),
+                                 max(both_all), sum(p >= 0.7 for p in both_all)))
+        if both_packet_all:
+            line += "; over Embree's packets: median %.2f, range %.2f to %.2f, %d at 0.7 or more" % (
+                statistics.median(both_packet_all), min(both_packet_all), max(both_packet_all),
+                sum(p >= 0.7 for p in both_packet_all))
+        out.append(line + ".")
     return "\n".join(out)
 
 
@@ -196,7 +219,8 @@ def main(argv=None):
     p.add_argument("--build_presets", default=BUILD_PRESETS)
     p.add_argument("--render_min_tris", type=int, default=50000)
     p.add_argument("--render_preset", default="sah-packet")
-    p.add_argument("--render_variants", default="kd,kd_mailbox,kd_packet,kd_origin")
+    p.add_argument("--render_variants",
+                   default="kd,kd_mailbox,kd_packet,kd_origin,kd_packet_origin")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")

@@ -49,11 +49,17 @@ class BenchTest(unittest.TestCase):
                                    "embree_disagreements": {"total": 3}}}
         one = rec(1, 0.2, 0.1)
         one["ratio_kd_over_embree"] = {"kd": {"median": 0.5, "min": 0.5, "paired": 0.55},
-                                       "kd_origin": {"median": 0.6, "min": 0.6, "paired": 0.66}}
-        one["ratio_kd_over_embree_packet"] = {"kd_packet": {"median": 0.6, "paired": 0.62}}
+                                       "kd_origin": {"median": 0.6, "min": 0.6, "paired": 0.66},
+                                       "kd_packet_origin": {"median": 0.8, "paired": 0.81}}
+        one["ratio_kd_over_embree_packet"] = {"kd_packet": {"median": 0.6, "paired": 0.62},
+                                              "kd_packet_origin": {"median": 0.7,
+                                                                   "paired": 0.69}}
         text = bench.render_summary([one, rec(2, 0.1, 0.05)])
         row = text.splitlines()[2]
-        self.assertIn("| 0.50 | 0.55 | - | 0.62 | 0.66 | 2.00x | 2.00x |", row)
+        self.assertIn("| 0.50 | 0.55 | - | 0.62 | 0.66 | 0.81, 0.69 | 2.00x | 2.00x |", row)
+        self.assertIn("paired kd_packet_origin/Embree over 1 rows: median 0.81, range 0.81 to "
+                      "0.81, 1 at 0.7 or more; over Embree's packets: median 0.69, range 0.69 "
+                      "to 0.69, 0 at 0.7 or more.", text)
         self.assertIn("paired kd_origin/Embree over 1 rows: median 0.66", text)
         self.assertIn("kd_packet/embree_packet over 1 rows: median 0.62", text)
         self.assertIn("Paired kd/Embree over 1 rows: median 0.55", text)

@@ -34,7 +34,8 @@
 // tree, primary and shadow rays in packets of 2x2 pixels, RenderOptions::packets,
 // cc/kdtree/ray_packet.h), "kd_origin" (kd, with shadow and AO rays leaving
 // their origin triangle untested, RenderOptions::skip_origin; validated on
-// every recorded secondary ray); Embree likewise as "embree" (rtcIntersect1 /
+// every recorded secondary ray), "kd_packet_origin" (both: packets, and shadow
+// rays leaving their origin triangle untested); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect4 / rtcOccluded4), with
 // ratios of every kd tracer to each. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
@@ -79,7 +80,8 @@ ABSL_FLAG(int, tile, 16, "Tile side for threads > 1 (renderer.h; 0 = whole rows)
 ABSL_FLAG(int, repeats, 5, "Timed rounds per thread count (each renders every tracer once).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet,kd_origin",
-          "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet, kd_origin.");
+          "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet, kd_origin, "
+          "kd_packet_origin.");
 ABSL_FLAG(std::string, envs, "",
           "Comma-separated environment files (env_file.h), each applied on top of --preset to "
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
@@ -204,6 +206,8 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       proto.emplace_back(v, &kd, true);
     } else if (v == "kd_origin") {
       proto.emplace_back(v, &kd, false, true);
+    } else if (v == "kd_packet_origin") {
+      proto.emplace_back(v, &kd, true, true);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
@@ -222,9 +226,11 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
     absl::StrAppend(&variant_json, variant_json.empty() ? "" : ", ", JsonQuote(e.name), ": ", bad);
     if (bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd on ", bad, " rays"));
     if (e.packets) {
-      // Packets: every primary hit bit for bit, the shadow count and the image.
+      // Packets: every primary hit bit for bit, the shadow count and the image
+      // (with shadow rays leaving their origin untested when the variant does).
       RenderOptions po = ropt;
       po.packets = true;
+      po.skip_origin = e.skip_origin;
       const RenderResult r = Render(*soup, *e.tracer, view, po);
       uint64_t differ = r.s_hit != recorded.s_hit || r.rgb != recorded.rgb;
       for (size_t p = 0; p < r.primary_hits.size(); ++p) {

@@ -25,6 +25,9 @@ struct Packet {
   Ray ray[kRayPacketSize];
   RaySetup4 setup;
   int live = 0;
+  // Per lane, the triangle the ray leaves (TraversalOptions::origin_tri),
+  // never tested; kNoHit for none.
+  uint32_t origin[kRayPacketSize] = {kNoHit, kNoHit, kNoHit, kNoHit};
   bool negative[3] = {false, false, false};
   bool same_signs = true;  // every live ray has `negative`'s signs
 };
@@ -196,11 +199,16 @@ void Trace(const KdTree& tree, const Packet& p, Hit* best) {
       _mm_store_si128(reinterpret_cast<__m128i*>(id), ids);
       const bool last = (id[0] & kLastPacket) != 0;
       id[0] &= ~kLastPacket;
+      const __m128i clean_ids = _mm_load_si128(reinterpret_cast<const __m128i*>(id));
       for (int rays = lanes; rays != 0; rays &= rays - 1) {
         const int r = __builtin_ctz(rays);
         const WatertightRay& wray = s.wray[r];
         Hit& b = best[r];
-        int live = tri_lanes & ~RejectMask4(wray, packet, p.ray[r].tmin >= 0.0f);
+        // The lane's origin triangle stays untested, as in the single-ray
+        // traversal (traversal.cc).
+        const int origin = _mm_movemask_ps(_mm_castsi128_ps(
+            _mm_cmpeq_epi32(clean_ids, _mm_set1_epi32(static_cast<int>(p.origin[r])))));
+        int live = tri_lanes & ~origin & ~RejectMask4(wray, packet, p.ray[r].tmin >= 0.0f);
         while (live != 0) {
           const int l = __builtin_ctz(live);
           live &= live - 1;
@@ -278,16 +286,34 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
     for (int i = 0; i < n; ++i) hits[i] = Intersect(tree, rays[i], options);
     return;
   }
-  for (int i = 0; i < n; ++i) hits[i] = Hit();
+  for (int i = 0; i < n; ++i) {
+    hits[i] = Hit();
+    p.origin[i] = options.origin_tri;
+  }
   if (p.live != 0) Trace<false>(tree, p, hits);
 }
 
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, bool* occluded,
                     const TraversalOptions& options) {
+  OccludedPacketFrom(tree, rays, n, nullptr, occluded, options);
+}
+
+void OccludedPacketFrom(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
+                        bool* occluded, const TraversalOptions& options) {
+  assert(origin_tris == nullptr || options.origin_tri == kNoHit);
   Packet p;
   if (!PreparePacket(tree, rays, n, options, &p)) {
-    for (int i = 0; i < n; ++i) occluded[i] = Occluded(tree, rays[i], options);
+    TraversalOptions one = options;
+    for (int i = 0; i < n; ++i) {
+      if (origin_tris != nullptr) one.origin_tri = origin_tris[i];
+      occluded[i] = Occluded(tree, rays[i], one);
+    }
     return;
+  }
+  // The packet path is the watertight test's (TreeSupportsPackets), where the
+  // origin triangle may be skipped.
+  for (int i = 0; i < n; ++i) {
+    p.origin[i] = origin_tris != nullptr ? origin_tris[i] : options.origin_tri;
   }
   Hit hits[kRayPacketSize];
   if (p.live != 0) Trace<true>(tree, p, hits);

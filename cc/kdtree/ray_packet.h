@@ -40,6 +40,13 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, bool* occluded,
                     const TraversalOptions& options = TraversalOptions());
 
+// occluded[i] = Occluded(tree, rays[i], options with origin_tri =
+// origin_tris[i]): each ray leaves its origin triangle untested
+// (TraversalOptions::origin_tri; the renderer's shadow and AO rays, cc/geometry/
+// spawn.h). options.origin_tri must be kNoHit.
+void OccludedPacketFrom(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
+                        bool* occluded, const TraversalOptions& options = TraversalOptions());
+
 // Whether IntersectPacket / OccludedPacket take the packet path for these rays
 // (else they trace them one by one). For tests and benchmarks.
 bool PacketPathApplies(const KdTree& tree, const Ray* rays, int n,

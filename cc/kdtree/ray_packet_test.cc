@@ -4,7 +4,9 @@
 // and a flat box. Packets: 2x2 camera blocks (coherent), rays from one point
 // with jittered directions, random rays forced to the same direction signs
 // (divergent lanes), axis-parallel rays with origins in split planes, and
-// packets with invalid rays or fewer than 4 rays.
+// packets with invalid rays or fewer than 4 rays. Shadow rays leaving their
+// origin triangles (OccludedPacketFrom) against the single-ray traversal told
+// the same triangle, also when the "origin" is the triangle the ray hits.
 #include "cc/kdtree/ray_packet.h"
 
 #include <cmath>
@@ -14,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cc/geometry/spawn.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/config.h"
@@ -191,6 +194,73 @@ INSTANTIATE_TEST_SUITE_P(
       }
       return n;
     });
+
+// Per lane origin triangles: packets of 4 shadow rays spawned (spawn.h) from
+// points on one triangle towards one light, told their true origin (never hit:
+// the answer is Occluded's) or, adversarially, the triangle their closest hit
+// is on (skipping it changes answers). Every lane must be the single-ray
+// traversal's with TraversalOptions::origin_tri, and IntersectPacket with an
+// origin_tri the single-ray Intersect with it.
+TEST_P(PacketVsSingle, OriginTrianglesPerLane) {
+  const auto& [scene, preset] = GetParam();
+  const TriangleSoup soup = SceneNamed(scene);
+  absl::StatusOr<Config> config = Preset(preset);
+  ASSERT_TRUE(config.ok()) << config.status();
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  const BruteForce bf(soup);
+  const AABB box = soup.Bounds();
+  const Vec3 lights[2] = {box.hi + box.Extent() * 0.3f,
+                          Vec3(box.lo.x, box.hi.y, box.lo.z) - box.Extent() * 0.2f};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  size_t packet_path = 0, packets = 0, differ = 0, skipped_hits = 0, brute = 0, shadowed = 0;
+  for (uint32_t t = 0; t < soup.size(); t += 1 + soup.size() / 300) {
+    const Vec3 n = GeometricNormal(soup.a(t), soup.b(t), soup.c(t));
+    if (n.x == 0 && n.y == 0 && n.z == 0) continue;
+    for (const Vec3& light : lights) {
+      Ray rays[kRayPacketSize];
+      uint32_t origin[kRayPacketSize], hit_tri[kRayPacketSize];
+      for (int l = 0; l < kRayPacketSize; ++l) {
+        float u = unit(rng), v = unit(rng);
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        const BoundedPoint p = HitPointWithError(soup.a(t), soup.b(t), soup.c(t), u, v);
+        rays[l] = SpawnShadowRay(p, n, light);
+        origin[l] = t;
+        hit_tri[l] = Intersect(*tree, rays[l]).tri;
+      }
+      ++packets;
+      packet_path += PacketPathApplies(*tree, rays, kRayPacketSize);
+      for (const uint32_t* tris : {origin, hit_tri}) {
+        bool occ[kRayPacketSize];
+        OccludedPacketFrom(*tree, rays, kRayPacketSize, tris, occ);
+        for (int l = 0; l < kRayPacketSize; ++l) {
+          TraversalOptions o;
+          o.origin_tri = tris[l];
+          differ += occ[l] != Occluded(*tree, rays[l], o);
+          Hit hits[kRayPacketSize];
+          IntersectPacket(*tree, &rays[l], 1, hits, o);
+          differ += !Bitwise(hits[0], Intersect(*tree, rays[l], o));
+          if (tris == origin) {
+            brute += occ[l] != bf.Occluded(rays[l]);
+            shadowed += occ[l];
+          } else {
+            skipped_hits += tris[l] != kNoHit;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(brute, 0u);
+  EXPECT_GT(packet_path, packets / 2) << packet_path << " of " << packets;
+  if (scene != "flat") {
+    // (In the flat scene every triangle lies in one plane: a ray leaving it
+    // meets nothing.)
+    EXPECT_GT(shadowed, 0u);
+    EXPECT_GT(skipped_hits, 0u);
+  }
+}
 
 TEST(RayPacket, FallsBackWithoutLeafLayoutOrWithMixedSigns) {
   const TriangleSoup soup = testing::BumpySphere(3, 2);

@@ -136,6 +136,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const float ts = lo > t_exit ? t_exit : lo;
         assert(top < kMaxTraversalStack);
         stack[top++] = StackEntry{far, ts - t_tol, t_exit};
+        _mm_prefetch(reinterpret_cast<const char*>(&nodes[far]), _MM_HINT_T0);
         index = near;
         t_exit = ts + t_tol;
       } else {

@@ -28,4 +28,9 @@ void KdTreeTracer::OccludedPacket(const Ray* rays, int n, bool* occluded) const 
   ::kdtree::OccludedPacket(tree_, rays, n, occluded, options_);
 }
 
+void KdTreeTracer::OccludedPacketFrom(const Ray* rays, int n, const uint32_t* origin_tris,
+                                      bool* occluded) const {
+  ::kdtree::OccludedPacketFrom(tree_, rays, n, origin_tris, occluded, options_);
+}
+
 }  // namespace kdtree

@@ -26,6 +26,8 @@ class KdTreeTracer : public Tracer {
   // The kd-tree's packet traversal (cc/kdtree/ray_packet.h).
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
   void OccludedPacket(const Ray* rays, int n, bool* occluded) const override;
+  void OccludedPacketFrom(const Ray* rays, int n, const uint32_t* origin_tris,
+                          bool* occluded) const override;
 
  private:
   const KdTree& tree_;

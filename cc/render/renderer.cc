@@ -213,6 +213,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
         uint64_t blocked = 0;
         for (int x = x0; x < x1; x += 2) {
           size_t pix[kTracerPacket], lit[kTracerPacket];
+          uint32_t origin[kTracerPacket];
           const int m = BlockPixels(w, y0, y1, x, x1, pix);
           SurfacePoint sp[kTracerPacket];
           int n = 0;
@@ -220,13 +221,18 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
             const Hit& hit = res.primary_hits[pix[i]];
             if (!hit.hit()) continue;
             sp[n] = MakeSurfacePoint(soup, pixel_ray(pix[i]), hit);
+            origin[n] = hit.tri;
             lit[n++] = pix[i];
           }
           for (int l = 0; l < n_lights && n > 0; ++l) {
             Ray rays[kTracerPacket];
             bool occ[kTracerPacket];
             for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], view.lights[l].position);
-            tracer.OccludedPacket(rays, n, occ);
+            if (skip_origin) {
+              tracer.OccludedPacketFrom(rays, n, origin, occ);
+            } else {
+              tracer.OccludedPacket(rays, n, occ);
+            }
             for (int i = 0; i < n; ++i) {
               occluded[lit[i] * n_lights + l] = occ[i];
               blocked += occ[i];

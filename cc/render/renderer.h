@@ -56,8 +56,9 @@ struct RenderOptions {
   bool packets = false;
   // Beyond the report: shadow and AO rays go through Tracer::OccludedFrom with
   // the primary hit's triangle, which the kd-tree then leaves untested (it can
-  // never hit it: TraversalOptions::origin_tri). Results, hence the image, are
-  // unchanged; packets ignore it. Off: every triangle met is tested, as the
+  // never hit it: TraversalOptions::origin_tri); with packets, the shadow
+  // rays go through Tracer::OccludedPacketFrom. Results, hence the image, are
+  // unchanged. Off: every triangle met is tested, as the
   // counting pass (traversal_counts.h) counts them.
   bool skip_origin = false;
   // Keep every ray and its result in RenderResult::rays (primary rays in pixel

@@ -122,7 +122,9 @@ TEST(Renderer, TilesGiveTheSameImageAsOneThread) {
 
 // Packets of 2x2 pixels (odd image sides and tiles: blocks of 1 to 4 rays)
 // give the single-ray hits, occlusions and image, with the kd-tree's packet
-// traversal and with the Tracer default (brute force, one ray at a time).
+// traversal and with the Tracer default (brute force, one ray at a time),
+// also with shadow rays leaving their origin triangle untested
+// (Tracer::OccludedPacketFrom).
 TEST(Renderer, PacketsGiveTheSingleRayImage) {
   View view = testing::SphereView(101, 71);
   view.ao.samples = 2;
@@ -134,21 +136,25 @@ TEST(Renderer, PacketsGiveTheSingleRayImage) {
   for (int threads : {1, 2}) {
     for (int tile : {0, 7, 16}) {
       for (const Tracer* tracer : {static_cast<const Tracer*>(&kd), static_cast<const Tracer*>(&brute)}) {
-        RenderOptions opt;
-        opt.threads = threads;
-        opt.tile_size = tile;
-        opt.packets = true;
-        const RenderResult b = Render(Scene().soup, *tracer, view, opt);
-        const std::string what = tracer->name() + " threads " + std::to_string(threads) +
-                                 " tile " + std::to_string(tile);
-        EXPECT_EQ(a.rgb, b.rgb) << what;
-        EXPECT_EQ(a.p_hit, b.p_hit) << what;
-        EXPECT_EQ(a.s_hit, b.s_hit) << what;
-        EXPECT_EQ(a.ao_hit, b.ao_hit) << what;
-        EXPECT_EQ(a.total_rays(), b.total_rays()) << what;
-        for (size_t p = 0; p < a.primary_hits.size(); ++p) {
-          ASSERT_EQ(a.primary_hits[p].tri, b.primary_hits[p].tri) << what << " pixel " << p;
-          ASSERT_EQ(a.primary_hits[p].t, b.primary_hits[p].t) << what << " pixel " << p;
+        for (bool skip_origin : {false, true}) {
+          RenderOptions opt;
+          opt.threads = threads;
+          opt.tile_size = tile;
+          opt.packets = true;
+          opt.skip_origin = skip_origin;
+          const RenderResult b = Render(Scene().soup, *tracer, view, opt);
+          const std::string what = tracer->name() + " threads " + std::to_string(threads) +
+                                   " tile " + std::to_string(tile) + " skip_origin " +
+                                   std::to_string(skip_origin);
+          EXPECT_EQ(a.rgb, b.rgb) << what;
+          EXPECT_EQ(a.p_hit, b.p_hit) << what;
+          EXPECT_EQ(a.s_hit, b.s_hit) << what;
+          EXPECT_EQ(a.ao_hit, b.ao_hit) << what;
+          EXPECT_EQ(a.total_rays(), b.total_rays()) << what;
+          for (size_t p = 0; p < a.primary_hits.size(); ++p) {
+            ASSERT_EQ(a.primary_hits[p].tri, b.primary_hits[p].tri) << what << " pixel " << p;
+            ASSERT_EQ(a.primary_hits[p].t, b.primary_hits[p].t) << what << " pixel " << p;
+          }
         }
         if (threads == 2) break;  // brute force at 2 threads adds nothing
       }

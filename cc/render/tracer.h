@@ -42,6 +42,13 @@ class Tracer {
   virtual void OccludedPacket(const Ray* rays, int n, bool* occluded) const {
     for (int i = 0; i < n; ++i) occluded[i] = Occluded(rays[i]);
   }
+  // OccludedFrom for a packet: ray i spawned from triangle origin_tris[i].
+  // Default: OccludedPacket.
+  virtual void OccludedPacketFrom(const Ray* rays, int n, const uint32_t* origin_tris,
+                                  bool* occluded) const {
+    (void)origin_tris;
+    OccludedPacket(rays, n, occluded);
+  }
 };
 
 }  // namespace kdtree
