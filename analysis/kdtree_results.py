@@ -33,6 +33,10 @@ GROUPS = [VARIANTS[0:3], VARIANTS[3:6], VARIANTS[6:9]]
 # tree statistics under "tree" or "stats"; accept both, and flat.
 FIELDS = {
     "T_B": ["T_B"], "T_R": ["T_R"], "perf": ["perf_krays", "perf"],
+    # The renderer's fastest mode (kdrt --fast_render; matrix
+    # fast_render_variants): packets of 2x2 pixels, shadow rays leaving their
+    # origin triangle untested; the same image.
+    "T_R_fast": ["fast_render.T_R"],
     "all_rays_per_s": ["all_rays_per_s"],
     "N_IT": ["N_IT"], "N_TR": ["N_TR"],
     "N_I": ["N_I"], "N_L": ["N_L"], "N_TP": ["N_TP"], "N_AP": ["N_AP"],

@@ -98,6 +98,9 @@ def kdrt_command(kdrt, scene, variant, settings, out_dir=None):
            "--embree", settings["embree"]]
     if settings.get("repeat_budget_s"):
         cmd += ["--repeat_budget_s", str(settings["repeat_budget_s"])]
+    if variant in settings.get("fast_render", []):
+        # Also the renderer's fastest mode (kdrt --fast_render: T_R_fast).
+        cmd += ["--fast_render"]
     return cmd + ["--out", out_dir] if out_dir else cmd
 
 
@@ -320,6 +323,7 @@ def main(argv=None):
         print("run_matrix: unknown profile %r" % args.profile, file=sys.stderr)
         return 2
     settings = dict(matrix["profiles"][args.profile])
+    settings["fast_render"] = matrix.get("fast_render_variants", [])
     if args.repeats:
         settings["repeats"] = args.repeats
     if args.embree:

@@ -97,6 +97,12 @@ class RunMatrixTest(unittest.TestCase):
         cmd = run_matrix.kdrt_command("k", "a", "pruning", s, "o")
         self.assertEqual(cmd[cmd.index("--repeat_budget_s") + 1], "30")
 
+    def test_fast_render_only_for_the_listed_variants(self):
+        s = {"repeats": 1, "threads": 1, "embree": "off", "fast_render": ["sah-packet"]}
+        self.assertIn("--fast_render", run_matrix.kdrt_command("k", "a", "sah-packet", s))
+        self.assertNotIn("--fast_render", run_matrix.kdrt_command("k", "a", "pruning", s))
+        self.assertIn("sah-packet", run_matrix.load_matrix()["fast_render_variants"])
+
     def test_accuracy_step_records_knob_and_failure(self):
         out = os.path.join(self.tmp.name, "out")
         os.makedirs(out)

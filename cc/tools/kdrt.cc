@@ -11,7 +11,9 @@
 // (T_R = median; renderer.h); render once more recording every ray (the same
 // rays: the renderer is deterministic) and replay them with the counting
 // traversal for N_IT / N_TR (traversal_counts.h); optionally dump the rays;
-// optionally build and render with Embree the same way and trace the recorded
+// optionally (--fast_render) time the renderer's packets with origin skipping
+// too (T_R_fast, record field fast_render); optionally build and render with
+// Embree the same way and trace the recorded
 // rays with it to count disagreements (compare.h). Writes
 // <out>/<scene>_<label>.png and appends the record to <out>/results.jsonl;
 // the record is also printed on stdout. Exit code 1 on any error.
@@ -54,6 +56,7 @@
 #include "cc/tools/kdrt_config.h"
 #include "cc/tools/paths.h"
 #include "cc/tools/run_info.h"
+#include "cc/tools/timed_render.h"
 
 ABSL_FLAG(std::string, scene, "", "Scene name from data/manifest.json (mesh via data/cache/scenes/index.json).");
 ABSL_FLAG(std::string, mesh, "", "Mesh file (anything assimp reads); with --scene, replaces its mesh.");
@@ -78,6 +81,10 @@ ABSL_FLAG(double, repeat_budget_s, 0,
           "(at least one run; 0 = always --repeats runs). Every run is recorded.");
 ABSL_FLAG(std::string, dump_rays, "", "Write every ray and its kd-tree result here (cc/render/ray_dump.h).");
 ABSL_FLAG(std::string, embree, "off", "off | low | medium | high: also build and render with Embree.");
+ABSL_FLAG(bool, fast_render, false,
+          "Also time the renderer's fastest mode (primary and shadow rays in packets of 2x2 "
+          "pixels, shadow rays leaving their origin triangle untested): T_R_fast, held to the "
+          "timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
 
 namespace kdtree {
@@ -125,38 +132,6 @@ uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
   return h;
 }
 
-// Whether to time one more run: fewer than `repeats` so far, and (with a
-// budget) the runs so far took less than `budget_s` seconds in all.
-bool MoreRuns(const std::vector<double>& runs, int repeats, double budget_s) {
-  if (runs.empty()) return true;
-  if (static_cast<int>(runs.size()) >= repeats) return false;
-  double spent = 0;
-  for (double r : runs) spent += r;
-  return budget_s <= 0 || spent < budget_s;
-}
-
-// Timed renders of one tracer: medians over up to `repeats` runs.
-struct Timed {
-  RenderResult last;
-  std::vector<double> t_r, t_primary, t_shadow, t_ao;
-};
-Timed TimeRenders(const TriangleSoup& soup, const Tracer& tracer, const View& view,
-                  const RenderOptions& opt, int repeats, double budget_s, Progress* progress) {
-  Timed t;
-  for (int i = 0; MoreRuns(t.t_r, repeats, budget_s); ++i) {
-    progress->Step(absl::StrFormat("%s render %d/%d", tracer.name(), i + 1, repeats));
-    t.last = Render(soup, tracer, view, opt);
-    t.t_r.push_back(t.last.seconds);
-    t.t_primary.push_back(t.last.primary.seconds);
-    t.t_shadow.push_back(t.last.shadow.seconds);
-    t.t_ao.push_back(t.last.ao.seconds);
-  }
-  return t;
-}
-std::string EffectJson(const char* name, uint64_t rays, const std::vector<double>& runs) {
-  return absl::StrFormat("%s: {\"rays\": %d, \"seconds\": %s, \"seconds_runs\": %s}", JsonQuote(name),
-                         rays, JsonNumber(Median(runs)), JsonNumberArray(runs));
-}
 std::string TraversalJson(const TraversalCounters& c) {
   const double n = c.rays ? static_cast<double>(c.rays) : 1.0;
   return absl::StrFormat("{\"rays\": %d, \"N_IT\": %s, \"N_TR\": %s, \"leaves\": %s}", c.rays,
@@ -252,7 +227,25 @@ absl::Status Run() {
   RenderOptions ropt;
   ropt.threads = threads;
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
-  const Timed kt = TimeRenders(*soup, kd, view, ropt, repeats, budget_s, &progress);
+  const auto step = [&progress](const std::string& what) { progress.Step(what); };
+  const Timed kt = TimeRenders(*soup, kd, view, ropt, repeats, budget_s, step);
+  // Beyond the report: the same frame with packets and origin skipping
+  // (RenderOptions::packets, skip_origin); results, hence the image, must be
+  // the timed ones.
+  std::string fast_json = "null";
+  if (absl::GetFlag(FLAGS_fast_render)) {
+    RenderOptions fo = ropt;
+    fo.packets = true;
+    fo.skip_origin = true;
+    const Timed ft = TimeRenders(*soup, kd, view, fo, repeats, budget_s, step);
+    if (ft.last.rgb != kt.last.rgb || ft.last.s_hit != kt.last.s_hit ||
+        ft.last.p_hit != kt.last.p_hit) {
+      return absl::InternalError("the fast render (packets, origin untested) differs from the timed one");
+    }
+    fast_json = absl::StrFormat("{\"T_R\": %s, \"T_R_runs\": %s, \"primary_s\": %s, \"shadow_s\": %s}",
+                                JsonNumber(Median(ft.t_r)), JsonNumberArray(ft.t_r),
+                                JsonNumber(Median(ft.t_primary)), JsonNumber(Median(ft.t_shadow)));
+  }
   progress.Step("recording rays");
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
@@ -288,7 +281,7 @@ absl::Status Run() {
       embree = *std::move(e);
       eb_runs.push_back(embree->build_seconds());
     }
-    const Timed et = TimeRenders(*soup, *embree, view, ropt, repeats, budget_s, &progress);
+    const Timed et = TimeRenders(*soup, *embree, view, ropt, repeats, budget_s, step);
     const double e_tr = Median(et.t_r);
     const RenderResult& er = et.last;
     progress.Step("comparing with embree");
@@ -336,7 +329,7 @@ absl::Status Run() {
       "\"traversal\": {\"primary\": %s, \"shadow\": %s, \"ao\": %s}, \"counting_mismatches\": %d, %s, "
       "\"P_hit\": %d, \"P_miss\": %d, \"S_hit\": %d, \"S_miss\": %d, \"AO_hit\": %d, \"AO_miss\": %d, "
       "\"effects\": {%s, %s, %s}, \"image\": %s, \"image_fnv64\": \"%016x\", \"embree\": %s, "
-      "\"disagreements\": %s, \"perf_ratio_kd_over_embree\": %s, %s}",
+      "\"disagreements\": %s, \"perf_ratio_kd_over_embree\": %s, \"fast_render\": %s, %s}",
       JsonQuote(scene), JsonQuote(mesh), soup->size(), JsonNumber(load.load_seconds),
       JsonQuote(rc->preset), JsonQuote(rc->label),
       rc->env_path.empty() ? "null" : JsonQuote(rc->env_path),
@@ -353,7 +346,7 @@ absl::Status Run() {
       tree_json, r.p_hit, r.p_miss, r.s_hit, r.s_miss, r.ao_hit, r.ao_miss,
       EffectJson("primary", r.primary.rays, kt.t_primary), EffectJson("shadow", r.shadow.rays, kt.t_shadow),
       EffectJson("ao", r.ao.rays, kt.t_ao), png.empty() ? "null" : JsonQuote(png), Fnv64(r.rgb),
-      embree_json, disagree_json, ratio_json, CollectRunInfo(Workspace()).ToJson());
+      embree_json, disagree_json, ratio_json, fast_json, CollectRunInfo(Workspace()).ToJson());
   std::printf("%s\n", record.c_str());
   std::fflush(stdout);
   if (!out.empty()) {

@@ -1,7 +1,7 @@
 #!/bin/bash
 # kdrt end to end on a small generated OBJ: the PNG and the JSON record, the
-# zero-shadow-ray rule for a lightless view, the ray dump, thread determinism
-# and the Embree comparison.
+# zero-shadow-ray rule for a lightless view, the ray dump, thread determinism,
+# the Embree comparison and the fast render (--fast_render).
 set -euo pipefail
 KDRT="$TEST_SRCDIR/$TEST_WORKSPACE/cc/tools/kdrt"
 T="$TEST_TMPDIR"
@@ -47,7 +47,7 @@ VIEW
 "$KDRT" --mesh=scene.obj --view=lit.view --out=out2 --repeats=1 --cache_dir= --threads=2 \
   --max_leaf_size=1 > lit2.json
 "$KDRT" --mesh=scene.obj --view=lit.view --out=out3 --repeats=1 --cache_dir= --threads=1 \
-  --max_leaf_size=1 > lit1.json
+  --max_leaf_size=1 --fast_render > lit1.json
 # A budget of ~0 s: every timed step runs once although --repeats=4.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=4 --repeat_budget_s=1e-12 --cache_dir= \
   --embree=medium > budget.json
@@ -101,5 +101,9 @@ check(len(budget["T_B_runs"]) == 1 and len(budget["T_R_runs"]) == 1, "budget: on
 check(len(budget["embree"]["T_B_runs"]) == 1 and len(budget["embree"]["T_R_runs"]) == 1,
       "budget: one Embree run each")
 check(lit["repeat_budget_s"] == 0, "no budget by default")
+check(lit["fast_render"] is None, "no fast render by default")
+fast = one["fast_render"]
+check(len(fast["T_R_runs"]) == 1 and fast["T_R"] > 0 and fast["primary_s"] > 0
+      and fast["shadow_s"] > 0, "fast render timed")
 print("ok")
 PY
