@@ -100,7 +100,7 @@ class Builder {
     tree_->nodes.reserve(kReserveFactor * n + 1);
     tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);
-    pool_.Reserve(kReserveFactor * n + 1);
+    pool_->Reserve(kReserveFactor * n + 1);
     Recurse(0, n, box, depth, refs);
   }
 
@@ -114,8 +114,8 @@ class Builder {
     tree_->nodes.reserve(kReserveFactor * n + 1);
     tree_->refs.reserve(kReserveFactor * n + 1);
     tree_->refs.push_back(0);  // the shared list of every empty leaf
-    pool_.Reserve(kReserveFactor * n + 1);
-    Ref* first = pool_.Reserved(n);
+    pool_->Reserve(kReserveFactor * n + 1);
+    Ref* first = pool_->Reserved(n);
     if constexpr (kIndex) {
       // One element more: the SSE loads of binned_sah.cc read a word past a
       // box.
@@ -140,7 +140,7 @@ class Builder {
     });
     AABB root;
     for (const AABB& b : chunk_box) root.Extend(b);
-    pool_.Resize(n);
+    pool_->Resize(n);
     tree_->bounds = root;
     Recurse(0, n, root, 0);
     if (overflow_) {
@@ -162,34 +162,34 @@ class Builder {
       // would be built in parallel.
       if (tri_map_ == nullptr && count <= kLocalMaxRefs && count >= kLocalMinRefs &&
           !(count >= kParallelMinRefs && depth < parallel_depth_)) {
-        RecurseLocal(external != nullptr ? external : pool_.data() + begin, count, box, depth);
+        RecurseLocal(external != nullptr ? external : pool_->data() + begin, count, box, depth);
         return;
       }
     }
     const uint32_t node = static_cast<uint32_t>(tree_->nodes.size());
     tree_->nodes.push_back(KdNode::Leaf(0));
     if (count <= static_cast<size_t>(config_.max_leaf_size) || depth >= max_depth_) {
-      MakeLeaf(node, external != nullptr ? external : pool_.data() + begin, count, box);
+      MakeLeaf(node, external != nullptr ? external : pool_->data() + begin, count, box);
       return;
     }
     const Split split =
-        FindSplit(external != nullptr ? external : pool_.data() + begin, count, box);
+        FindSplit(external != nullptr ? external : pool_->data() + begin, count, box);
     // Full SAH: split only when it is cheaper than a leaf (sah_cost.h).
     if (!split.found ||
         (config_.full_sah && !(static_cast<double>(split.cost) < LeafCost(count, config_)))) {
-      MakeLeaf(node, external != nullptr ? external : pool_.data() + begin, count, box);
+      MakeLeaf(node, external != nullptr ? external : pool_->data() + begin, count, box);
       return;
     }
     const AABB left_box = box.LeftOf(split.axis, split.pos);
     const AABB right_box = box.RightOf(split.axis, split.pos);
-    const size_t left_begin = pool_.size();
+    const size_t left_begin = pool_->size();
     Partition(begin, end, external, split, left_box, right_box);
     const size_t right_begin = left_begin + count;  // see Partition
-    const size_t right_end = pool_.size();
-    if (pool_.size() > counters().peak_build_refs) {
-      counters().peak_build_refs = pool_.size();
+    const size_t right_end = pool_->size();
+    if (pool_->size() > counters().peak_build_refs) {
+      counters().peak_build_refs = pool_->size();
       counters().peak_build_bytes =
-          pool_.size() * sizeof(Ref) + (kIndex ? (soup_.size() + 1) * sizeof(AABB) : 0);
+          pool_->size() * sizeof(Ref) + (kIndex ? (soup_.size() + 1) * sizeof(AABB) : 0);
     }
 
     if (count >= kParallelMinRefs && depth < parallel_depth_) {
@@ -203,7 +203,7 @@ class Builder {
     tree_->nodes[node] =
         KdNode::Inner(split.axis, split.pos, static_cast<uint32_t>(right_node & KdNode::kMaxIndex));
     Recurse(right_begin, right_end, right_box, depth + 1);
-    pool_.Resize(left_begin);
+    pool_->Resize(left_begin);
   }
 
   // The subtree over refs[0, count) built by a local builder into the same
@@ -217,22 +217,24 @@ class Builder {
     if constexpr (kIndex) {
       if (local_ == nullptr) {
         local_ = std::make_unique<Builder>(soup_, config_, fragment_, max_depth_, 0, nullptr);
-        local_->pool_.Reserve(kReserveFactor * kLocalMaxRefs + 1);
+        local_->pool_ = pool_;  // its references go on top of this builder's
       }
+      // `refs` may lie in the pool: read them before the pool grows.
       local_boxes_.resize(count + 1);  // + 1: binned_sah.cc's SSE loads
       local_tris_.resize(count);
-      Ref* first = local_->pool_.Reserved(count);
       for (size_t i = 0; i < count; ++i) {
         local_boxes_[i] = boxes_[refs[i]];
         local_tris_[i] = refs[i];
-        first[i] = static_cast<IndexRef>(i);
       }
       local_boxes_[count] = AABB();
+      const size_t begin = pool_->size();
+      Ref* first = pool_->Reserved(count);
+      for (size_t i = 0; i < count; ++i) first[i] = static_cast<IndexRef>(i);
+      pool_->Resize(begin + count);
       local_->boxes_ = local_boxes_.data();
       local_->tri_map_ = local_tris_.data();
-      local_->pool_.Resize(count);
-      local_->Recurse(0, count, box, depth);
-      local_->pool_.Resize(0);
+      local_->Recurse(begin, begin + count, box, depth);
+      pool_->Resize(begin);
       if (local_->overflow_) overflow_ = true;
     }
   }
@@ -269,13 +271,13 @@ class Builder {
     auto right = std::make_unique<Fragment>();
     Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_, boxes_);
     Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_, boxes_);
-    const Ref* refs = pool_.data();
+    const Ref* refs = pool_->data();
     tbb::task_group group;
     group.run(
         [&] { lb.RunFragment(refs + left_begin, left_end - left_begin, left_box, depth + 1); });
     rb.RunFragment(refs + right_begin, right_end - right_begin, right_box, depth + 1);
     group.wait();
-    pool_.Resize(left_begin);
+    pool_->Resize(left_begin);
     if (lb.overflow() || rb.overflow()) overflow_ = true;
     fragment_->children.emplace_back(node + 1, std::move(left));
     fragment_->children.emplace_back(node + 2, std::move(right));
@@ -291,10 +293,10 @@ class Builder {
   void Partition(size_t begin, size_t end, const Ref* external, const Split& split,
                  const AABB& left_box, const AABB& right_box) {
     const size_t count = end - begin;
-    Ref* const left_first = pool_.Reserved(2 * count);
+    Ref* const left_first = pool_->Reserved(2 * count);
     Ref* const right_first = left_first + count;
     // Stable: no growth below.
-    const Ref* const src = external != nullptr ? external : pool_.data() + begin;
+    const Ref* const src = external != nullptr ? external : pool_->data() + begin;
     Cursors<Ref> out{left_first, right_first};
     if constexpr (kIndex) {
       PartitionBoxes(src, count, split, boxes_, config_.seed_compatible, &counters(), &out);
@@ -305,7 +307,7 @@ class Builder {
     }
     left_count_ = static_cast<size_t>(out.left - left_first);
     const size_t right_count = static_cast<size_t>(out.right - right_first);
-    pool_.Resize(pool_.size() + count + right_count);
+    pool_->Resize(pool_->size() + count + right_count);
   }
 
   void MakeLeaf(uint32_t node, const Ref* leaf_refs, size_t n, const AABB& box) {
@@ -344,7 +346,8 @@ class Builder {
   const Config& config_;
   Fragment* fragment_;
   KdTree* tree_;
-  RefPoolOf<Ref> pool_;
+  RefPoolOf<Ref> own_pool_;
+  RefPoolOf<Ref>* pool_ = &own_pool_;  // a local builder's is its parent's
   size_t left_count_ = 0;
   const int max_depth_;
   const int parallel_depth_;
