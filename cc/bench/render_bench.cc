@@ -73,7 +73,8 @@
 
 ABSL_FLAG(std::string, scenes, "bunny", "Comma-separated manifest scenes (fetched).");
 ABSL_FLAG(std::string, repo, ".", "Repository root (manifest, scene index).");
-ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache ('' = none).");
+ABSL_FLAG(std::string, cache_dir, "data/cache/soups",
+          "Triangle-soup cache, relative to --repo unless absolute ('' = none).");
 ABSL_FLAG(std::string, preset, "clipping-pruning", "kd-tree configuration preset.");
 ABSL_FLAG(std::string, threads, "1,2", "Comma-separated thread counts.");
 ABSL_FLAG(int, tile, 16, "Tile side for threads > 1 (renderer.h; 0 = whole rows).");
@@ -157,8 +158,12 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   absl::StatusOr<SceneRef> ref = ResolveScene(repo, scene);
   if (!ref.ok()) return ref.status();
   const std::string cache = absl::GetFlag(FLAGS_cache_dir);
-  absl::StatusOr<TriangleSoup> soup =
-      LoadMeshCached(ref->mesh_path, cache.empty() ? "" : absl::StrCat(repo, "/", cache));
+  // Relative to --repo; an absolute directory as given (experiments/bench.py
+  // passes one: joined to the repository, it made a second cache under
+  // <repo>/<its own path>).
+  const std::string cache_dir =
+      cache.empty() || cache[0] == '/' ? cache : absl::StrCat(repo, "/", cache);
+  absl::StatusOr<TriangleSoup> soup = LoadMeshCached(ref->mesh_path, cache_dir);
   if (!soup.ok()) return soup.status();
   const View view = ref->has_view ? ref->view : AutoView(soup->Bounds());
   absl::StatusOr<Config> config = Preset(absl::GetFlag(FLAGS_preset));
