@@ -99,7 +99,8 @@ def kdrt_command(kdrt, scene, variant, settings, out_dir=None):
     if settings.get("repeat_budget_s"):
         cmd += ["--repeat_budget_s", str(settings["repeat_budget_s"])]
     if variant in settings.get("fast_render", []):
-        # Also the renderer's fastest mode (kdrt --fast_render: T_R_fast).
+        # Also the renderer's fastest mode (kdrt --fast_render: record field
+        # fast_render, the analysis's T_R_fast).
         cmd += ["--fast_render"]
     return cmd + ["--out", out_dir] if out_dir else cmd
 

@@ -12,7 +12,8 @@
 // rays: the renderer is deterministic) and replay them with the counting
 // traversal for N_IT / N_TR (traversal_counts.h); optionally dump the rays;
 // optionally (--fast_render) time the renderer's packets with origin skipping
-// too (T_R_fast, record field fast_render); optionally build and render with
+// too (record field fast_render: its T_R, runs, primary and shadow seconds);
+// optionally build and render with
 // Embree the same way and trace the recorded
 // rays with it to count disagreements (compare.h). Writes
 // <out>/<scene>_<label>.png and appends the record to <out>/results.jsonl;
@@ -83,8 +84,8 @@ ABSL_FLAG(std::string, dump_rays, "", "Write every ray and its kd-tree result he
 ABSL_FLAG(std::string, embree, "off", "off | low | medium | high: also build and render with Embree.");
 ABSL_FLAG(bool, fast_render, false,
           "Also time the renderer's fastest mode (primary and shadow rays in packets of 2x2 "
-          "pixels, shadow rays leaving their origin triangle untested): T_R_fast, held to the "
-          "timed image.");
+          "pixels, shadow rays leaving their origin triangle untested): record field "
+          "fast_render, held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
 
 namespace kdtree {
