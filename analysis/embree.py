@@ -147,29 +147,28 @@ def generate(ctx):
     data = rows(df)
     ctx.write("embree.tex", render(data))
     ratios = [r["ratio_best"] for r in data]
-    beyond = [r["ratio_beyond"] for r in data if r["ratio_beyond"] is not None]
-    big = [r["ratio_beyond"] for r in data
-           if r["ratio_beyond"] is not None and r["n_tri"] >= 50000]
-    fast = [r["ratio_fast"] for r in data if r["ratio_fast"] is not None]
-    fast_big = [r["ratio_fast"] for r in data
-                if r["ratio_fast"] is not None and r["n_tri"] >= 50000]
 
-    def stat(f, values):
-        return ("%.2f" % f(values) if values else latex.DASH, True)
+    def ratio_macros(prefix, key):
+        """Median, range and count of a ratio column over the scenes that have
+        it, and how many of those of 50,000 triangles or more reach 0.7."""
+        values = [r[key] for r in data if r[key] is not None]
+        big = [r[key] for r in data if r[key] is not None and r["n_tri"] >= 50000]
+
+        def stat(f):
+            return ("%.2f" % f(values) if values else latex.DASH, True)
+
+        return {
+            prefix + "Scenes": (str(len(values)), False),
+            prefix + "RatioMedian": stat(statistics.median),
+            prefix + "RatioMin": stat(min),
+            prefix + "RatioMax": stat(max),
+            prefix + "BigScenes": (str(len(big)), False),
+            prefix + "BigAtLeastSeventy": (str(sum(x >= 0.7 for x in big)), False),
+        }
 
     return {
-        "EmbreePacketScenes": (str(len(beyond)), False),
-        "EmbreePacketRatioMedian": stat(statistics.median, beyond),
-        "EmbreePacketRatioMin": stat(min, beyond),
-        "EmbreePacketRatioMax": stat(max, beyond),
-        "EmbreePacketBigScenes": (str(len(big)), False),
-        "EmbreePacketBigAtLeastSeventy": (str(sum(x >= 0.7 for x in big)), False),
-        "EmbreeFastScenes": (str(len(fast)), False),
-        "EmbreeFastRatioMedian": stat(statistics.median, fast),
-        "EmbreeFastRatioMin": stat(min, fast),
-        "EmbreeFastRatioMax": stat(max, fast),
-        "EmbreeFastBigScenes": (str(len(fast_big)), False),
-        "EmbreeFastBigAtLeastSeventy": (str(sum(x >= 0.7 for x in fast_big)), False),
+        **ratio_macros("EmbreePacket", "ratio_beyond"),
+        **ratio_macros("EmbreeFast", "ratio_fast"),
         "EmbreeScenes": (str(len(data)), False),
         "EmbreeRatioMedian": ("%.2f" % statistics.median(ratios) if ratios
                               else latex.DASH, True),
