@@ -14,6 +14,8 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cc/geometry/spawn.h"
@@ -156,8 +158,6 @@ Counts Check(const TriangleSoup& soup, const KdTree& tree, const PacketSet& s) {
   return c;
 }
 
-class PacketVsSingle : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
-
 TriangleSoup SceneNamed(const std::string& name) {
   if (name == "sphere") return testing::BumpySphere(4, 1);
   if (name == "voxels") return testing::VoxelGrid(10, 6, 10, 2);
@@ -165,15 +165,28 @@ TriangleSoup SceneNamed(const std::string& name) {
   return testing::FlatScene(1500, 4);
 }
 
+// The parameter's scene (soup_) and its tree under the parameter's preset
+// (tree_).
+class PacketVsSingle : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {
+ protected:
+  void SetUp() override {
+    const auto& [scene, preset] = GetParam();
+    soup_ = SceneNamed(scene);
+    absl::StatusOr<Config> config = Preset(preset);
+    ASSERT_TRUE(config.ok()) << config.status();
+    absl::StatusOr<KdTree> tree = BuildKdTree(soup_, *config);
+    ASSERT_TRUE(tree.ok()) << tree.status();
+    tree_ = *std::move(tree);
+  }
+
+  TriangleSoup soup_;
+  KdTree tree_;
+};
+
 TEST_P(PacketVsSingle, EveryLaneIsTheSingleRayResult) {
-  const auto& [scene, preset] = GetParam();
-  const TriangleSoup soup = SceneNamed(scene);
-  absl::StatusOr<Config> config = Preset(preset);
-  ASSERT_TRUE(config.ok()) << config.status();
-  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
-  ASSERT_TRUE(tree.ok()) << tree.status();
+  const TriangleSoup& soup = soup_;
   const PacketSet s = MakePackets(soup, 7);
-  const Counts c = Check(soup, *tree, s);
+  const Counts c = Check(soup, tree_, s);
   EXPECT_EQ(c.closest, 0u);
   EXPECT_EQ(c.any, 0u);
   EXPECT_EQ(c.brute, 0u);
@@ -202,12 +215,8 @@ INSTANTIATE_TEST_SUITE_P(
 // traversal's with TraversalOptions::origin_tri, and IntersectPacket with an
 // origin_tri the single-ray Intersect with it.
 TEST_P(PacketVsSingle, OriginTrianglesPerLane) {
-  const auto& [scene, preset] = GetParam();
-  const TriangleSoup soup = SceneNamed(scene);
-  absl::StatusOr<Config> config = Preset(preset);
-  ASSERT_TRUE(config.ok()) << config.status();
-  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
-  ASSERT_TRUE(tree.ok()) << tree.status();
+  const std::string& scene = std::get<0>(GetParam());
+  const TriangleSoup& soup = soup_;
   const BruteForce bf(soup);
   const AABB box = soup.Bounds();
   const Vec3 lights[2] = {box.hi + box.Extent() * 0.3f,
@@ -227,20 +236,20 @@ TEST_P(PacketVsSingle, OriginTrianglesPerLane) {
         const BoundedPoint p = HitPointWithError(soup.a(t), soup.b(t), soup.c(t), u, v);
         rays[l] = SpawnShadowRay(p, n, light);
         origin[l] = t;
-        hit_tri[l] = Intersect(*tree, rays[l]).tri;
+        hit_tri[l] = Intersect(tree_, rays[l]).tri;
       }
       ++packets;
-      packet_path += PacketPathApplies(*tree, rays, kRayPacketSize);
+      packet_path += PacketPathApplies(tree_, rays, kRayPacketSize);
       for (const uint32_t* tris : {origin, hit_tri}) {
         bool occ[kRayPacketSize];
-        OccludedPacketFrom(*tree, rays, kRayPacketSize, tris, occ);
+        OccludedPacketFrom(tree_, rays, kRayPacketSize, tris, occ);
         for (int l = 0; l < kRayPacketSize; ++l) {
           TraversalOptions o;
           o.origin_tri = tris[l];
-          differ += occ[l] != Occluded(*tree, rays[l], o);
+          differ += occ[l] != Occluded(tree_, rays[l], o);
           Hit hits[kRayPacketSize];
-          IntersectPacket(*tree, &rays[l], 1, hits, o);
-          differ += !Bitwise(hits[0], Intersect(*tree, rays[l], o));
+          IntersectPacket(tree_, &rays[l], 1, hits, o);
+          differ += !Bitwise(hits[0], Intersect(tree_, rays[l], o));
           if (tris == origin) {
             brute += occ[l] != bf.Occluded(rays[l]);
             shadowed += occ[l];
