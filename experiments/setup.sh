@@ -19,6 +19,7 @@ PKGS=(
   zlib1g-dev             # zlib: gzip-compressed meshes (.ply.gz)
   libtbb-dev             # oneTBB: parallel rendering / building
   libembree-dev          # Embree 3: the speed to beat
+  nlohmann-json3-dev     # nlohmann-json: result records written and read as JSON
   python3 python3-pandas python3-matplotlib python3-pil python3-tqdm  # analysis
   pkg-config ca-certificates xz-utils
 )

@@ -5,30 +5,30 @@
 //   bazel-bin/cc/tools/kdrt --mesh=/tmp/gl/usr/share/glmark2/models/bunny.obj
 //       --preset=clipping-pruning --out=/tmp/kdrt --repeats=3 --embree=medium
 //
-// Steps: load the mesh (through the soup cache); build the tree `repeats`
-// times (T_B = median; --repeat_budget_s caps the runs of a slow step, at
-// least one); render `repeats` times on the non-counting fast path
-// (T_R = median; renderer.h); render once more recording every ray (the same
-// rays: the renderer is deterministic) and replay them with the counting
-// traversal for N_IT / N_TR (traversal_counts.h); optionally dump the rays;
-// optionally (--fast_render) time the renderer's packets with origin skipping
-// too (record field fast_render: its T_R, runs, primary and shadow seconds);
-// optionally build and render with
-// Embree the same way and trace the recorded
-// rays with it to count disagreements (compare.h). Writes
+// Steps (timing method: timed_render.h; timed steps alone under the
+// machine-wide TimingLock, cc/base/timing_lock.h): load the mesh (through the
+// soup cache); build the kd-tree and, with --embree, Embree once untimed
+// (T_B_warmup), then in `repeats` timed rounds (T_B = median;
+// --repeat_budget_s caps the rounds, at least one); render each tracer once
+// untimed (T_R_warmup): the kd-tree on the non-counting fast path
+// (renderer.h), optionally (--fast_render) the renderer's packets with origin
+// skipping (same image), optionally Embree; render once more recording every
+// ray and replay them with the counting traversal for N_IT / N_TR
+// (traversal_counts.h) and with Embree for disagreements (compare.h);
+// optionally dump the rays; then time the renders in `repeats` rounds
+// alternating the tracers (T_R = median; Embree's time over the kd-tree's,
+// per round, then the median: perf_ratio_kd_over_embree). The record carries
+// the provenance of its numbers (cc/base/provenance.h). Writes
 // <out>/<scene>_<label>.png and appends the record to <out>/results.jsonl;
 // the record is also printed on stdout. Exit code 1 on any error.
 //
 // perf_krays = 640,000 / T_R / 1000 in the report's sense: primary rays per
 // second of render time although T_R includes the shadow rays
 // (width * height in place of 640,000); all_rays_per_s counts every ray.
-#include <sys/stat.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
-
 #include <algorithm>
+#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -41,6 +41,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "cc/base/provenance.h"
+#include "cc/base/timing_lock.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/builder.h"
@@ -56,8 +58,9 @@
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
 #include "cc/tools/paths.h"
-#include "cc/tools/run_info.h"
+#include "cc/tools/timed_build.h"
 #include "cc/tools/timed_render.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, scene, "", "Scene name from data/manifest.json (mesh via data/cache/scenes/index.json).");
 ABSL_FLAG(std::string, mesh, "", "Mesh file (anything assimp reads); with --scene, replaces its mesh.");
@@ -133,23 +136,32 @@ uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
   return h;
 }
 
-std::string TraversalJson(const TraversalCounters& c) {
+using Json = nlohmann::ordered_json;
+
+Json TraversalJson(const TraversalCounters& c) {
   const double n = c.rays ? static_cast<double>(c.rays) : 1.0;
-  return absl::StrFormat("{\"rays\": %d, \"N_IT\": %s, \"N_TR\": %s, \"leaves\": %s}", c.rays,
-                         JsonNumber(c.triangle_tests / n), JsonNumber(c.inner_visits / n),
-                         JsonNumber(c.leaf_visits / n));
+  return {{"rays", c.rays}, {"N_IT", c.triangle_tests / n}, {"N_TR", c.inner_visits / n},
+          {"leaves", c.leaf_visits / n}};
 }
 
-// mkdir -p.
-absl::Status MakeDirs(const std::string& dir) {
-  for (size_t i = 1; i <= dir.size(); ++i) {
-    if (i < dir.size() && dir[i] != '/') continue;
-    const std::string part = dir.substr(0, i);
-    if (mkdir(part.c_str(), 0755) != 0 && errno != EEXIST) {
-      return absl::InternalError(absl::StrCat(part, ": cannot create directory: ", std::strerror(errno)));
-    }
-  }
-  return absl::OkStatus();
+// Per-ray figures of a timed render: T_R and its runs, perf (the report's
+// krays/s of primary rays per second of T_R) and every ray per second.
+void AddRenderTimes(const Lane& lane, double pixels, Json* j) {
+  const double t_r = Median(lane.timed.t_r);
+  (*j)["T_R"] = t_r;
+  (*j)["T_R_runs"] = lane.timed.t_r;
+  (*j)["T_R_warmup"] = lane.warmup_s;
+  (*j)["perf_krays"] = pixels / t_r / 1000.0;
+  (*j)["all_rays_per_s"] = lane.last.total_rays() / t_r;
+}
+
+// The configuration's fields as the record shows them.
+Json ConfigJson(const Config& c) {
+  return {{"max_depth", c.max_depth},         {"max_leaf_size", c.max_leaf_size},
+          {"use_binning", c.use_binning},     {"use_driving_axis", c.use_driving_axis},
+          {"bins", c.bins},                   {"use_clipping", c.use_clipping},
+          {"use_pruning", c.use_pruning},     {"cast_shadow_rays", c.cast_shadow_rays},
+          {"seed_compatible", c.seed_compatible}};
 }
 
 absl::Status Run() {
@@ -197,6 +209,9 @@ absl::Status Run() {
   absl::StatusOr<EmbreeQuality> quality = ParseEmbreeQuality(embree_flag);
   const bool use_embree = embree_flag != "off" && embree_flag != "";
   if (use_embree && !quality.ok()) return quality.status();
+  EmbreeOptions eo;
+  if (use_embree) eo.quality = *quality;
+  eo.threads = threads;
 
   Progress progress(absl::StrCat(scene, " ", rc->label));
   progress.Step("loading mesh");
@@ -214,146 +229,157 @@ absl::Status Run() {
     view_source = "auto";
   }
 
-  // kd-tree: builds, timed renders, recorded render, counting pass.
-  std::vector<double> tb_runs;
-  absl::StatusOr<KdTree> tree;
-  for (int i = 0; MoreRuns(tb_runs, repeats, budget_s); ++i) {
-    progress.Step(absl::StrFormat("build %d/%d", i + 1, repeats));
-    tree = BuildKdTree(*soup, rc->config);
-    if (!tree.ok()) return tree.status();
-    tb_runs.push_back(tree->build_seconds);
-  }
-  const TreeStats stats = ComputeStats(*tree);
-  const KdTreeTracer kd(*tree);
+  // Builds (warm-up, then timed rounds under the lock).
+  TimingLock lock;
+  TimedBuilds b;
+  const auto step = [&progress](const std::string& what) { progress.Step(what); };
+  absl::Status st =
+      TimeBuilds(*soup, rc->config, use_embree ? &eo : nullptr, repeats, budget_s, &lock, step, &b);
+  if (!st.ok()) return st;
+  const KdTree& tree = *b.tree;
+  const TreeStats stats = ComputeStats(tree);
+  const KdTreeTracer kd(tree);
   RenderOptions ropt;
   ropt.threads = threads;
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
-  const auto step = [&progress](const std::string& what) { progress.Step(what); };
-  const Timed kt = TimeRenders(*soup, kd, view, ropt, repeats, budget_s, step);
-  // Beyond the report: the same frame with packets and origin skipping
-  // (RenderOptions::packets, skip_origin); results, hence the image, must be
-  // the timed ones.
-  std::string fast_json = "null";
-  if (absl::GetFlag(FLAGS_fast_render)) {
+  // The renders: the kd-tree, optionally its fastest mode (packets of 2x2
+  // pixels, shadow rays leaving their origin triangle untested; the same
+  // image), optionally Embree; each warmed up once, then timed in rounds.
+  std::vector<Lane> lanes;
+  lanes.push_back({"kd-tree", &kd, ropt});
+  const bool fast = absl::GetFlag(FLAGS_fast_render);
+  if (fast) {
     RenderOptions fo = ropt;
     fo.packets = true;
     fo.skip_origin = true;
-    const Timed ft = TimeRenders(*soup, kd, view, fo, repeats, budget_s, step);
-    if (ft.last.rgb != kt.last.rgb || ft.last.s_hit != kt.last.s_hit ||
-        ft.last.p_hit != kt.last.p_hit) {
-      return absl::InternalError("the fast render (packets, origin untested) differs from the timed one");
-    }
-    fast_json = absl::StrFormat("{\"T_R\": %s, \"T_R_runs\": %s, \"primary_s\": %s, \"shadow_s\": %s}",
-                                JsonNumber(Median(ft.t_r)), JsonNumberArray(ft.t_r),
-                                JsonNumber(Median(ft.t_primary)), JsonNumber(Median(ft.t_shadow)));
+    lanes.push_back({"kd-tree fast", &kd, fo});
   }
+  if (use_embree) lanes.push_back({"embree", b.embree.get(), ropt});
+  WarmUp(*soup, view, &lanes, step);
+  const Lane& kl = lanes.front();
+  if (fast && (lanes[1].last.rgb != kl.last.rgb || lanes[1].last.s_hit != kl.last.s_hit ||
+               lanes[1].last.p_hit != kl.last.p_hit)) {
+    return absl::InternalError("the fast render (packets, origin untested) differs from the timed one");
+  }
+  // Untimed: the recorded render, the counting pass, Embree's answers.
   progress.Step("recording rays");
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
   RenderResult recorded = Render(*soup, kd, view, rec_opt);
-  if (recorded.rgb != kt.last.rgb || recorded.s_hit != kt.last.s_hit) {
+  if (recorded.rgb != kl.last.rgb || recorded.s_hit != kl.last.s_hit) {
     return absl::InternalError("the recording render differs from the timed one (non-deterministic?)");
   }
   progress.Step("counting pass");
-  const RayCounts counts = CountTraversal(*tree, recorded.rays);
+  const RayCounts counts = CountTraversal(tree, recorded.rays);
+  Json disagreements;
+  if (use_embree) {
+    progress.Step("comparing with embree");
+    const Disagreements d = CompareTracers(recorded.rays, *soup, kd, *b.embree);
+    disagreements = Json::parse(d.ToJson());
+    for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
+  }
   if (!absl::GetFlag(FLAGS_dump_rays).empty()) {
     progress.Step("writing ray dump");
     RayDump dump{view.width, view.height, std::move(recorded.rays)};
-    absl::Status st = WriteRayDump(FromInvocationDir(absl::GetFlag(FLAGS_dump_rays)), dump);
+    st = WriteRayDump(FromInvocationDir(absl::GetFlag(FLAGS_dump_rays)), dump);
     if (!st.ok()) return st;
-    recorded.rays = std::move(dump.records);
   }
-
-  const double pixels = static_cast<double>(view.width) * view.height;
-  const double t_r = Median(kt.t_r);
-  const RenderResult& r = kt.last;
-  std::string embree_json = "null", disagree_json = "null", ratio_json = "null";
-  if (use_embree) {
-    EmbreeOptions eo;
-    eo.quality = *quality;
-    eo.threads = threads;
-    std::vector<double> eb_runs;
-    std::unique_ptr<EmbreeTracer> embree;
-    for (int i = 0; MoreRuns(eb_runs, repeats, budget_s); ++i) {
-      progress.Step(absl::StrFormat("embree build %d/%d", i + 1, repeats));
-      embree.reset();
-      absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, eo);
-      if (!e.ok()) return e.status();
-      embree = *std::move(e);
-      eb_runs.push_back(embree->build_seconds());
-    }
-    const Timed et = TimeRenders(*soup, *embree, view, ropt, repeats, budget_s, step);
-    const double e_tr = Median(et.t_r);
-    const RenderResult& er = et.last;
-    progress.Step("comparing with embree");
-    const Disagreements d = CompareTracers(recorded.rays, *soup, kd, *embree);
-    disagree_json = d.ToJson();
-    for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
-    ratio_json = JsonNumber(e_tr / t_r);
-    embree_json = absl::StrFormat(
-        "{\"quality\": %s, \"T_B\": %s, \"T_B_runs\": %s, \"T_R\": %s, \"T_R_runs\": %s, "
-        "\"perf_krays\": %s, \"all_rays_per_s\": %s, \"P_hit\": %d, \"P_miss\": %d, \"S_hit\": %d, "
-        "\"S_miss\": %d, \"effects\": {%s, %s, %s}, \"disagreements\": %d, "
-        "\"disagreements_grazing\": %d, \"disagreements_at_origin\": %d, \"disagreements_t_guard\": %d, "
-        "\"disagreements_other\": %d, "
-        "\"perf_ratio_kd_over_embree\": %s}",
-        JsonQuote(EmbreeQualityName(*quality)), JsonNumber(Median(eb_runs)), JsonNumberArray(eb_runs),
-        JsonNumber(e_tr), JsonNumberArray(et.t_r), JsonNumber(pixels / e_tr / 1000.0),
-        JsonNumber(er.total_rays() / e_tr), er.p_hit, er.p_miss, er.s_hit, er.s_miss,
-        EffectJson("primary", er.primary.rays, et.t_primary), EffectJson("shadow", er.shadow.rays, et.t_shadow),
-        EffectJson("ao", er.ao.rays, et.t_ao), d.all.total(), d.all.grazing, d.all.at_origin, d.all.t_guard, d.all.other(),
-        ratio_json);
-  }
+  recorded = RenderResult();
+  progress.Step("waiting for the timing lock");
+  if (!(st = lock.Acquire()).ok()) return st;
+  st = TimeRounds(*soup, view, repeats, budget_s, &lanes, step);
+  lock.Release();
+  if (!st.ok()) return st;
   progress.Done();
 
   // Image and record.
+  const RenderResult& r = kl.last;
+  const double pixels = static_cast<double>(view.width) * view.height;
   const std::string out = FromInvocationDir(absl::GetFlag(FLAGS_out));
   std::string png = "";
   if (!out.empty()) {
-    absl::Status st = MakeDirs(out);
-    if (!st.ok()) return st;
+    std::error_code ec;
+    std::filesystem::create_directories(out, ec);
+    if (ec) return absl::InternalError(absl::StrCat(out, ": cannot create directory: ", ec.message()));
     png = absl::StrCat(out, "/", scene, "_", rc->label, ".png");
-    st = WritePngRgb8(png, r.width, r.height, r.rgb);
-    if (!st.ok()) return st;
+    if (!(st = WritePngRgb8(png, r.width, r.height, r.rgb)).ok()) return st;
   }
-  const Config& c = rc->config;
-  std::string tree_json = StatsToJson(stats);
-  tree_json = tree_json.substr(1, tree_json.size() - 2);  // members only
-  const std::string record = absl::StrFormat(
-      "{\"scene\": %s, \"mesh\": %s, \"n_tri\": %d, \"load_s\": %s, \"preset\": %s, \"label\": %s, "
-      "\"env_file\": %s, \"overrides\": [%s], \"config\": {\"max_depth\": %d, \"max_leaf_size\": %d, "
-      "\"use_binning\": %s, \"use_driving_axis\": %s, \"bins\": %d, \"use_clipping\": %s, "
-      "\"use_pruning\": %s, \"cast_shadow_rays\": %s, \"seed_compatible\": %s}, \"env\": %s, "
-      "\"view_source\": %s, \"view\": %s, \"width\": %d, \"height\": %d, \"lights\": %d, "
-      "\"threads\": %d, \"repeats\": %d, \"repeat_budget_s\": %s, \"T_B\": %s, \"T_B_runs\": %s, \"T_R\": %s, \"T_R_runs\": %s, "
-      "\"perf_krays\": %s, \"all_rays_per_s\": %s, \"rays_total\": %d, \"N_IT\": %s, \"N_TR\": %s, "
-      "\"traversal\": {\"primary\": %s, \"shadow\": %s, \"ao\": %s}, \"counting_mismatches\": %d, %s, "
-      "\"P_hit\": %d, \"P_miss\": %d, \"S_hit\": %d, \"S_miss\": %d, \"AO_hit\": %d, \"AO_miss\": %d, "
-      "\"effects\": {%s, %s, %s}, \"image\": %s, \"image_fnv64\": \"%016x\", \"embree\": %s, "
-      "\"disagreements\": %s, \"perf_ratio_kd_over_embree\": %s, \"fast_render\": %s, %s}",
-      JsonQuote(scene), JsonQuote(mesh), soup->size(), JsonNumber(load.load_seconds),
-      JsonQuote(rc->preset), JsonQuote(rc->label),
-      rc->env_path.empty() ? "null" : JsonQuote(rc->env_path),
-      rc->overrides.empty() ? "" : absl::StrCat("\"", absl::StrJoin(rc->overrides, "\", \""), "\""),
-      c.max_depth, c.max_leaf_size, c.use_binning ? "true" : "false",
-      c.use_driving_axis ? "true" : "false", c.bins, c.use_clipping ? "true" : "false",
-      c.use_pruning ? "true" : "false", c.cast_shadow_rays ? "true" : "false",
-      c.seed_compatible ? "true" : "false", JsonQuote(c.ToEnvironment()), JsonQuote(view_source),
-      JsonQuote(ViewToText(view)), view.width, view.height, view.lights.size(), threads, repeats, JsonNumber(budget_s),
-      JsonNumber(Median(tb_runs)), JsonNumberArray(tb_runs), JsonNumber(t_r), JsonNumberArray(kt.t_r),
-      JsonNumber(pixels / t_r / 1000.0), JsonNumber(r.total_rays() / t_r), r.total_rays(),
-      JsonNumber(counts.n_it()), JsonNumber(counts.n_tr()), TraversalJson(counts.by_kind[0]),
-      TraversalJson(counts.by_kind[1]), TraversalJson(counts.by_kind[2]), counts.result_mismatches,
-      tree_json, r.p_hit, r.p_miss, r.s_hit, r.s_miss, r.ao_hit, r.ao_miss,
-      EffectJson("primary", r.primary.rays, kt.t_primary), EffectJson("shadow", r.shadow.rays, kt.t_shadow),
-      EffectJson("ao", r.ao.rays, kt.t_ao), png.empty() ? "null" : JsonQuote(png), Fnv64(r.rgb),
-      embree_json, disagree_json, ratio_json, fast_json, CollectRunInfo(Workspace()).ToJson());
-  std::printf("%s\n", record.c_str());
+  Json rec = {{"scene", scene}, {"mesh", mesh}, {"n_tri", soup->size()}, {"load_s", load.load_seconds},
+              {"preset", rc->preset}, {"label", rc->label},
+              {"env_file", rc->env_path.empty() ? Json() : Json(rc->env_path)},
+              {"overrides", rc->overrides}, {"config", ConfigJson(rc->config)},
+              {"env", rc->config.ToEnvironment()}, {"view_source", view_source}, {"view", ViewToText(view)},
+              {"width", view.width}, {"height", view.height}, {"lights", view.lights.size()},
+              {"threads", threads}, {"repeats", repeats}, {"repeat_budget_s", budget_s}};
+  rec["timing"] = {{"method", "warm-up excluded, then rounds alternating the tracers; ratios paired per round"},
+                   {"rounds", kl.timed.t_r.size()}, {"lock_wait_s", lock.waited_seconds()}};
+  rec["T_B"] = Median(b.kd_runs);
+  rec["T_B_runs"] = b.kd_runs;
+  rec["T_B_warmup"] = b.kd_warmup;
+  AddRenderTimes(kl, pixels, &rec);
+  rec["rays_total"] = r.total_rays();
+  rec["N_IT"] = counts.n_it();
+  rec["N_TR"] = counts.n_tr();
+  rec["traversal"] = {{"primary", TraversalJson(counts.by_kind[0])},
+                      {"shadow", TraversalJson(counts.by_kind[1])},
+                      {"ao", TraversalJson(counts.by_kind[2])}};
+  rec["counting_mismatches"] = counts.result_mismatches;
+  const Json tree_stats = Json::parse(StatsToJson(stats));
+  for (const auto& [key, value] : tree_stats.items()) rec[key] = value;
+  for (const auto& [key, value] : {std::pair<const char*, uint64_t>{"P_hit", r.p_hit}, {"P_miss", r.p_miss},
+                                   {"S_hit", r.s_hit}, {"S_miss", r.s_miss}, {"AO_hit", r.ao_hit},
+                                   {"AO_miss", r.ao_miss}}) {
+    rec[key] = value;
+  }
+  rec["effects"] = EffectsJson(kl);
+  rec["image"] = png.empty() ? Json() : Json(png);
+  rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
+  rec["embree"] = nullptr;
+  rec["disagreements"] = use_embree ? disagreements : Json();
+  rec["perf_ratio_kd_over_embree"] = nullptr;
+  rec["fast_render"] = nullptr;
+  if (fast) {
+    const Lane& fl = lanes[1];
+    rec["fast_render"] = {{"T_R", Median(fl.timed.t_r)}, {"T_R_runs", fl.timed.t_r}, {"T_R_warmup", fl.warmup_s},
+                          {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)}};
+  }
+  if (use_embree) {
+    const Lane& el = lanes.back();
+    const std::vector<double> paired = PairedRatios(el.timed.t_r, kl.timed.t_r);
+    Json e = {{"quality", EmbreeQualityName(*quality)}, {"T_B", Median(b.embree_runs)},
+              {"T_B_runs", b.embree_runs}, {"T_B_warmup", b.embree_warmup}};
+    AddRenderTimes(el, pixels, &e);
+    const RenderResult& er = el.last;
+    for (const auto& [key, value] : {std::pair<const char*, uint64_t>{"P_hit", er.p_hit}, {"P_miss", er.p_miss},
+                                     {"S_hit", er.s_hit}, {"S_miss", er.s_miss}}) {
+      e[key] = value;
+    }
+    e["effects"] = EffectsJson(el);
+    for (const char* k : {"grazing", "at_origin", "t_guard", "other"}) {
+      e[absl::StrCat("disagreements_", k)] = disagreements[k];
+    }
+    e["disagreements"] = disagreements["total"];
+    e["paired_ratio_runs"] = paired;
+    e["paired_ratio"] = Median(paired);
+    e["perf_ratio_kd_over_embree"] = Median(paired);
+    rec["perf_ratio_kd_over_embree"] = Median(paired);
+    if (fast) {
+      const std::vector<double> fp = PairedRatios(el.timed.t_r, lanes[1].timed.t_r);
+      rec["fast_render"]["paired_ratio_runs"] = fp;
+      rec["fast_render"]["paired_ratio"] = Median(fp);
+    }
+    rec["embree"] = std::move(e);
+  }
+  Provenance prov = CollectProvenance(Workspace());
+  prov.timing_lock = lock.path();
+  rec["provenance"] = prov.ToJson();
+  const std::string line = rec.dump(-1, ' ', false, Json::error_handler_t::replace);
+  std::printf("%s\n", line.c_str());
   std::fflush(stdout);
   if (!out.empty()) {
     const std::string path = absl::StrCat(out, "/results.jsonl");
     FILE* f = std::fopen(path.c_str(), "a");
-    if (f == nullptr || std::fprintf(f, "%s\n", record.c_str()) < 0 || std::fclose(f) != 0) {
+    if (f == nullptr || std::fprintf(f, "%s\n", line.c_str()) < 0 || std::fclose(f) != 0) {
       return absl::InternalError(absl::StrCat(path, ": cannot append"));
     }
   }

@@ -6,6 +6,8 @@ set -euo pipefail
 KDRT="$TEST_SRCDIR/$TEST_WORKSPACE/cc/tools/kdrt"
 T="$TEST_TMPDIR"
 cd "$T"
+# Timed steps hold this lock (cc/base/timing_lock.h), not the machine's.
+export KDTREE_TIMING_LOCK="$T/timing.lock"
 
 # A closed octahedron above a ground quad.
 cat > scene.obj <<'OBJ'
@@ -76,8 +78,8 @@ def check(cond, msg):
 for k in ["scene", "mesh", "n_tri", "preset", "config", "env", "threads", "repeats", "T_B",
           "T_B_runs", "T_R", "T_R_runs", "perf_krays", "all_rays_per_s", "N_IT", "N_TR", "N_I",
           "N_L", "N_TP", "N_AP", "mem_report_mb", "R_E", "D_max", "D_avg", "N_CL", "N_PR",
-          "P_hit", "P_miss", "S_hit", "S_miss", "effects", "build", "git_commit", "cpu_model",
-          "embree", "disagreements", "perf_ratio_kd_over_embree"]:
+          "P_hit", "P_miss", "S_hit", "S_miss", "effects", "provenance", "T_B_warmup",
+          "T_R_warmup", "timing", "embree", "disagreements", "perf_ratio_kd_over_embree"]:
     check(k in lit, "missing " + k)
 check(lit["scene"] == "scene" and lit["n_tri"] == 10, "scene / n_tri")
 check(len(lit["T_B_runs"]) == 2 and len(lit["T_R_runs"]) == 2, "runs")
@@ -100,6 +102,14 @@ check(budget["repeats"] == 4 and budget["repeat_budget_s"] == 1e-12, "budget rec
 check(len(budget["T_B_runs"]) == 1 and len(budget["T_R_runs"]) == 1, "budget: one kd-tree run each")
 check(len(budget["embree"]["T_B_runs"]) == 1 and len(budget["embree"]["T_R_runs"]) == 1,
       "budget: one Embree run each")
+check(lit["embree"]["paired_ratio_runs"] == [e / k for e, k in
+      zip(lit["embree"]["T_R_runs"], lit["T_R_runs"])], "paired per round")
+check(len(lit["embree"]["paired_ratio_runs"]) == 2, "two rounds, the warm-up apart")
+check(lit["perf_ratio_kd_over_embree"] == lit["embree"]["paired_ratio"], "the paired median")
+check(lit["T_B_warmup"] > 0 and lit["embree"]["T_R_warmup"] > 0, "warm-ups recorded")
+prov = lit["provenance"]
+check(prov["timing_lock"].endswith("timing.lock") and prov["timed_beside"] == 0, "timed alone")
+check(prov["cores"] >= 1 and prov["compilation_mode"] in ("opt", "fastbuild", "dbg"), "build")
 check(lit["repeat_budget_s"] == 0, "no budget by default")
 check(lit["fast_render"] is None, "no fast render by default")
 fast = one["fast_render"]

@@ -1,5 +1,6 @@
 #include "cc/tools/timed_render.h"
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "cc/render/json.h"
 
@@ -13,24 +14,52 @@ bool MoreRuns(const std::vector<double>& runs, int repeats, double budget_s) {
   return budget_s <= 0 || spent < budget_s;
 }
 
-Timed TimeRenders(const TriangleSoup& soup, const Tracer& tracer, const View& view,
-                  const RenderOptions& opt, int repeats, double budget_s,
-                  const std::function<void(const std::string&)>& step) {
-  Timed t;
-  for (int i = 0; MoreRuns(t.t_r, repeats, budget_s); ++i) {
-    if (step) step(absl::StrFormat("%s render %d/%d", tracer.name(), i + 1, repeats));
-    t.last = Render(soup, tracer, view, opt);
-    t.t_r.push_back(t.last.seconds);
-    t.t_primary.push_back(t.last.primary.seconds);
-    t.t_shadow.push_back(t.last.shadow.seconds);
-    t.t_ao.push_back(t.last.ao.seconds);
+void WarmUp(const TriangleSoup& soup, const View& view, std::vector<Lane>* lanes, const StepFn& step) {
+  for (Lane& lane : *lanes) {
+    if (step) step(absl::StrCat(lane.name, " warm-up render"));
+    lane.last = Render(soup, *lane.tracer, view, lane.opt);
+    lane.warmup_s = lane.last.seconds;
   }
-  return t;
 }
 
-std::string EffectJson(const char* name, uint64_t rays, const std::vector<double>& runs) {
-  return absl::StrFormat("%s: {\"rays\": %d, \"seconds\": %s, \"seconds_runs\": %s}",
-                         JsonQuote(name), rays, JsonNumber(Median(runs)), JsonNumberArray(runs));
+absl::Status TimeRounds(const TriangleSoup& soup, const View& view, int repeats, double budget_s,
+                        std::vector<Lane>* lanes, const StepFn& step) {
+  std::vector<double> rounds;
+  for (int i = 0; MoreRuns(rounds, repeats, budget_s); ++i) {
+    double round_s = 0;
+    for (Lane& lane : *lanes) {
+      if (step) step(absl::StrFormat("round %d/%d: %s", i + 1, repeats, lane.name));
+      RenderResult r = Render(soup, *lane.tracer, view, lane.opt);
+      if (r.rgb != lane.last.rgb || r.p_hit != lane.last.p_hit || r.s_hit != lane.last.s_hit) {
+        return absl::InternalError(absl::StrCat(lane.name, ": a timed render differs from the one before"));
+      }
+      lane.timed.t_r.push_back(r.seconds);
+      lane.timed.t_primary.push_back(r.primary.seconds);
+      lane.timed.t_shadow.push_back(r.shadow.seconds);
+      lane.timed.t_ao.push_back(r.ao.seconds);
+      round_s += r.seconds;
+      lane.last = std::move(r);
+    }
+    rounds.push_back(round_s);
+  }
+  return absl::OkStatus();
+}
+
+std::vector<double> PairedRatios(const std::vector<double>& num, const std::vector<double>& den) {
+  std::vector<double> out;
+  for (size_t i = 0; i < num.size() && i < den.size(); ++i) out.push_back(num[i] / den[i]);
+  return out;
+}
+
+nlohmann::ordered_json EffectJson(uint64_t rays, const std::vector<double>& runs) {
+  return {{"rays", rays}, {"seconds", Median(runs)}, {"seconds_runs", runs}};
+}
+
+nlohmann::ordered_json EffectsJson(const Lane& lane) {
+  const RenderResult& r = lane.last;
+  return {{"primary", EffectJson(r.primary.rays, lane.timed.t_primary)},
+          {"shadow", EffectJson(r.shadow.rays, lane.timed.t_shadow)},
+          {"ao", EffectJson(r.ao.rays, lane.timed.t_ao)}};
 }
 
 }  // namespace kdtree

@@ -1,5 +1,9 @@
-// kdrt's timed steps: repeated runs under a count and a time budget, and
-// repeated renders of one tracer with their per-effect times.
+// kdrt's timing method (issue 22), the one render_bench uses too: each tracer
+// is first run once untimed (the warm-up, recorded apart), then the tracers
+// alternate in rounds, so that a slow stretch of a shared machine falls on
+// all of them alike, and each ratio between two tracers is paired per round
+// (the ratio of their times in one round, then the median over rounds).
+// The caller holds the machine-wide TimingLock around the rounds.
 #ifndef KDTREE_CC_TOOLS_TIMED_RENDER_H_
 #define KDTREE_CC_TOOLS_TIMED_RENDER_H_
 
@@ -12,27 +16,47 @@
 #include "cc/render/renderer.h"
 #include "cc/render/tracer.h"
 #include "cc/render/view.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 
-// Whether to time one more run: none yet, or fewer than `repeats` so far and
-// (with a budget > 0) the runs so far took less than `budget_s` seconds in all.
+// Whether to time one more round: none yet, or fewer than `repeats` so far and
+// (with a budget > 0) the rounds so far took less than `budget_s` seconds in all.
 bool MoreRuns(const std::vector<double>& runs, int repeats, double budget_s);
 
-// Timed renders of one tracer: every run's total, primary, shadow and AO
-// seconds, and the last run's result.
+// Timed runs: every run's total, primary, shadow and AO seconds.
 struct Timed {
-  RenderResult last;
   std::vector<double> t_r, t_primary, t_shadow, t_ao;
 };
-// Renders under MoreRuns(repeats, budget_s); `step` (may be empty) is told
-// "render i/repeats" before each run.
-Timed TimeRenders(const TriangleSoup& soup, const Tracer& tracer, const View& view,
-                  const RenderOptions& opt, int repeats, double budget_s,
-                  const std::function<void(const std::string&)>& step);
 
-// {"rays": n, "seconds": median, "seconds_runs": [...]} after `"name": `.
-std::string EffectJson(const char* name, uint64_t rays, const std::vector<double>& runs);
+// One tracer with its render options, timed in rounds beside the others.
+struct Lane {
+  std::string name;  // for the progress line
+  const Tracer* tracer = nullptr;
+  RenderOptions opt;
+  double warmup_s = 0;  // the untimed first render
+  RenderResult last;    // the last render (warm-up or timed)
+  Timed timed;
+};
+
+using StepFn = std::function<void(const std::string&)>;
+
+// Renders each lane once, untimed (warm-up).
+void WarmUp(const TriangleSoup& soup, const View& view, std::vector<Lane>* lanes, const StepFn& step);
+
+// Timed rounds: in each, every lane renders once, in order; rounds repeat
+// under MoreRuns(round totals, repeats, budget_s). Error when a lane's image
+// or hit counts change between its runs (the renderer is deterministic).
+absl::Status TimeRounds(const TriangleSoup& soup, const View& view, int repeats, double budget_s,
+                        std::vector<Lane>* lanes, const StepFn& step);
+
+// num[i] / den[i] for each round both have.
+std::vector<double> PairedRatios(const std::vector<double>& num, const std::vector<double>& den);
+
+// {"rays": n, "seconds": median, "seconds_runs": [...]}
+nlohmann::ordered_json EffectJson(uint64_t rays, const std::vector<double>& runs);
+// {"primary": ..., "shadow": ..., "ao": ...} of a lane.
+nlohmann::ordered_json EffectsJson(const Lane& lane);
 
 }  // namespace kdtree
 

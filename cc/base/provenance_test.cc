@@ -1,0 +1,41 @@
+#include "cc/base/provenance.h"
+
+#include <cstdlib>
+
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+TEST(Provenance, KnowsTheCompileModeAndHonoursOverrides) {
+  setenv("KDTREE_GIT_COMMIT", "0123abcd", 1);
+  setenv("KDTREE_SOURCE_TREE", "feedbeef", 1);
+  const Provenance p = CollectProvenance(".");
+  EXPECT_EQ(p.commit, "0123abcd");
+  EXPECT_EQ(p.source_tree, "feedbeef");
+  EXPECT_TRUE(p.compilation_mode == "opt" || p.compilation_mode == "fastbuild" || p.compilation_mode == "dbg")
+      << p.compilation_mode;
+  EXPECT_GE(p.cores, 1);
+  EXPECT_EQ(p.timestamp_utc.size(), 20u);
+  const nlohmann::ordered_json j = p.ToJson();
+  EXPECT_EQ(j["commit"], "0123abcd");
+  EXPECT_EQ(j["source_tree"], "feedbeef");
+  EXPECT_TRUE(j["timed_beside"].is_null()) << "no lock held: unknown";
+  EXPECT_EQ(j["timing_build"], p.compilation_mode == "opt" && p.optimized && p.ndebug);
+  unsetenv("KDTREE_GIT_COMMIT");
+  unsetenv("KDTREE_SOURCE_TREE");
+}
+
+TEST(Provenance, OutsideACheckoutTheCodeIsUnknown) {
+  Provenance p = CollectProvenance("/nonexistent/repo");
+  EXPECT_EQ(p.commit, "");
+  EXPECT_EQ(p.source_tree, "");
+  nlohmann::ordered_json j = p.ToJson();
+  EXPECT_TRUE(j["commit"].is_null());
+  EXPECT_TRUE(j["source_tree"].is_null());
+  p.timing_lock = "/tmp/x.lock";
+  EXPECT_EQ(p.ToJson()["timed_beside"], 0);
+}
+
+}  // namespace
+}  // namespace kdtree

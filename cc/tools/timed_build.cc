@@ -1,0 +1,52 @@
+#include "cc/tools/timed_build.h"
+
+#include "absl/strings/str_format.h"
+
+namespace kdtree {
+namespace {
+
+absl::StatusOr<double> BuildKd(const TriangleSoup& soup, const Config& config, TimedBuilds* b) {
+  b->tree = absl::UnknownError("rebuilding");  // the old tree is freed first
+  b->tree = BuildKdTree(soup, config);
+  if (!b->tree.ok()) return b->tree.status();
+  return b->tree->build_seconds;
+}
+
+absl::StatusOr<double> BuildEmbree(const TriangleSoup& soup, const EmbreeOptions& options, TimedBuilds* b) {
+  b->embree.reset();
+  absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(soup, options);
+  if (!e.ok()) return e.status();
+  b->embree = *std::move(e);
+  return b->embree->build_seconds();
+}
+
+}  // namespace
+
+absl::Status TimeBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
+                        int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b) {
+  if (step) step("warm-up builds");
+  absl::StatusOr<double> s = BuildKd(soup, config, b);
+  if (!s.ok()) return s.status();
+  b->kd_warmup = *s;
+  if (embree != nullptr) {
+    if (!(s = BuildEmbree(soup, *embree, b)).ok()) return s.status();
+    b->embree_warmup = *s;
+  }
+  if (step) step("waiting for the timing lock");
+  if (absl::Status st = lock->Acquire(); !st.ok()) return st;
+  std::vector<double> rounds;
+  for (int i = 0; MoreRuns(rounds, repeats, budget_s); ++i) {
+    if (step) step(absl::StrFormat("build round %d/%d", i + 1, repeats));
+    if (!(s = BuildKd(soup, config, b)).ok()) return s.status();
+    b->kd_runs.push_back(*s);
+    rounds.push_back(*s);
+    if (embree == nullptr) continue;
+    if (!(s = BuildEmbree(soup, *embree, b)).ok()) return s.status();
+    b->embree_runs.push_back(*s);
+    rounds.back() += *s;
+  }
+  lock->Release();
+  return absl::OkStatus();
+}
+
+}  // namespace kdtree
