@@ -22,6 +22,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
+import provenance  # noqa: E402
 import run_matrix  # noqa: E402
 import scenes as scene_runner  # noqa: E402
 
@@ -45,8 +46,10 @@ def slug(step):
     return re.sub(r"[^a-z0-9]+", "-", step.lower()).strip("-")
 
 
-def job_key(scene, step, repeats):
-    return [scene, step["knob"], step["step"], int(repeats)]
+def job_key(scene, step, repeats, source_tree=None):
+    """A step is done when recorded for this scene, repeats and code (the
+    source tree of experiments/provenance.py: an edit reruns every step)."""
+    return [scene, step["knob"], step["step"], int(repeats), source_tree]
 
 
 def plan(profile_name, study, manifest, index, scenes=None):
@@ -60,7 +63,7 @@ def plan(profile_name, study, manifest, index, scenes=None):
     return [(n, st) for n in names if n in index for st in study["steps"]]
 
 
-def run_one(kdrt, scene, step, profile, profile_name, out):
+def run_one(kdrt, scene, step, profile, profile_name, out, source_tree=None):
     env_dir = os.path.join(out, "accuracy", "envs")
     os.makedirs(env_dir, exist_ok=True)
     env_path = os.path.join(env_dir, slug(step["step"]) + ".env")
@@ -72,9 +75,9 @@ def run_one(kdrt, scene, step, profile, profile_name, out):
            "--embree", "off"]
     if profile.get("repeat_budget_s"):
         cmd += ["--repeat_budget_s", str(profile["repeat_budget_s"])]
-    returncode, stderr, lines, wall, cmd = run_matrix.run_kdrt(
-        cmd, out, prefix="kdrt-acc-")
-    base = {"job": job_key(scene, step, profile["repeats"]), "scene": scene,
+    returncode, stderr, lines, wall, cmd = run_matrix.run_kdrt(cmd)
+    base = {"job": job_key(scene, step, profile["repeats"], source_tree),
+            "scene": scene,
             "knob": step["knob"], "step": step["step"],
             "options": step["options"], "profile": profile_name,
             "wall_s": wall}
@@ -124,11 +127,12 @@ def main(argv=None):
     if args.force:
         done = set()
     failed = 0
+    tree = provenance.code_identity()["source_tree"]
     for i, (scene, step) in enumerate(jobs):
-        if tuple(job_key(scene, step, profile["repeats"])) in done:
+        if tuple(job_key(scene, step, profile["repeats"], tree)) in done:
             continue
         rec = run_one(os.path.abspath(args.kdrt), scene, step, profile,
-                      args.profile, args.out)
+                      args.profile, args.out, tree)
         run_matrix.append_record(results_path, rec)
         failed += not rec["ok"]
         print("accuracy: [%d/%d] %s / %s: %s" % (

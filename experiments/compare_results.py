@@ -20,7 +20,7 @@ TIMING_WORDS = ("T_B", "T_R", "perf", "seconds", "_s", "per_s", "runs",
 PROVENANCE = {"node", "backend", "commit", "git_commit", "cpu", "job", "host",
               "command", "error", "out", "png", "image", "dump", "build_flags",
               "mesh", "hostname", "threads_available", "load",
-              "concurrent_jobs"}
+              "concurrent_jobs", "provenance", "timing"}
 
 
 def is_timing(key):

@@ -14,14 +14,12 @@ images to OUT/images/planar/<scene>_<variant>_<mode>.png.
 import argparse
 import json
 import os
-import shutil
-import subprocess
 import sys
-import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
+import provenance  # noqa: E402
 import run_matrix  # noqa: E402
 
 RESULTS_FILE = "planar.jsonl"
@@ -39,46 +37,38 @@ def main(argv=None):
     os.makedirs(results, exist_ok=True)
     os.makedirs(images, exist_ok=True)
     path = os.path.join(results, RESULTS_FILE)
+    # Done: recorded from the same code (experiments/provenance.py).
+    tree = provenance.code_identity()["source_tree"]
     done = set()
     if os.path.exists(path):
         with open(path, encoding="utf-8") as f:
             for line in f:
                 if line.strip():
                     r = json.loads(line)
-                    done.add((r["scene"], r["preset"], r["mode"]))
+                    if provenance.record_source_tree(r) == tree:
+                        done.add((r["scene"], r["preset"], r["mode"]))
     failures = 0
     for variant in run_matrix.load_matrix()["variants"]:
         for mode, flag in MODES.items():
             if (args.scene, variant, mode) in done:
                 continue
-            tmp = tempfile.mkdtemp(prefix="planar-", dir=args.out)
-            try:
-                label = "%s_%s" % (variant, mode)
-                cmd = [args.kdrt, "--scene", args.scene, "--preset", variant,
-                       "--seed_compatible", flag, "--label", label,
-                       "--repeats", "1", "--out", tmp]
-                proc = subprocess.run(cmd, cwd=ROOT, stderr=subprocess.PIPE,
-                                      stdout=subprocess.PIPE, text=True)
-                res = os.path.join(tmp, "results.jsonl")
-                if proc.returncode != 0 or not os.path.exists(res):
-                    failures += 1
-                    print("planar: %s %s failed: %s" % (variant, mode,
-                          proc.stderr[-500:]), file=sys.stderr)
-                    continue
-                with open(res, encoding="utf-8") as f:
-                    rec = json.loads(f.read().strip().splitlines()[-1])
-                rec.update({"mode": mode, "preset": variant, "ok": True})
-                png = os.path.join(tmp, "%s_%s.png" % (args.scene, label))
-                if os.path.exists(png):
-                    dest = os.path.join(images, os.path.basename(png))
-                    shutil.move(png, dest)
-                    rec["image"] = dest
-                run_matrix.append_record(path, rec)
-                print("planar: %s %-18s %-7s lost %s, P_hit %s"
-                      % (args.scene, variant, mode, rec.get("N_lost_planar"),
-                         rec.get("P_hit")), file=sys.stderr)
-            finally:
-                shutil.rmtree(tmp, ignore_errors=True)
+            label = "%s_%s" % (variant, mode)
+            image = os.path.join(images, "%s_%s.png" % (args.scene, label))
+            cmd = [args.kdrt, "--scene", args.scene, "--preset", variant,
+                   "--seed_compatible", flag, "--label", label,
+                   "--repeats", "1", "--image", image]
+            returncode, stderr, lines, _, _ = run_matrix.run_kdrt(cmd)
+            if returncode != 0 or not lines:
+                failures += 1
+                print("planar: %s %s failed: %s" % (variant, mode,
+                      stderr[-500:]), file=sys.stderr)
+                continue
+            rec = lines[-1]
+            rec.update({"mode": mode, "preset": variant, "ok": True})
+            run_matrix.append_record(path, rec)
+            print("planar: %s %-18s %-7s lost %s, P_hit %s"
+                  % (args.scene, variant, mode, rec.get("N_lost_planar"),
+                     rec.get("P_hit")), file=sys.stderr)
     return 1 if failures else 0
 
 

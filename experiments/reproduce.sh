@@ -35,11 +35,14 @@ elif [ "$fetch_rc" -ne 0 ]; then
 fi
 
 step "build tools"
-bazel build -c opt //cc/tools:scene_info //cc/tools:kdrt //cc/seed:row18_tool
-BIN="$(bazel info -c opt bazel-bin)"
+# One configuration for everything timed (.bazelrc's opt: -c opt -O3
+# -march=native), the one the benchmarks use, so that a ratio means the same
+# whichever tool measured it.
+bazel build --config=opt //cc/tools:scene_info //cc/tools:kdrt //cc/seed:row18_tool
+BIN="$(bazel info --config=opt bazel-bin)"
 # The bazel-bin symlink follows whichever configuration was built last: ask
 # for the opt output directory instead of trusting it.
-SCENE_INFO="$(bazel info -c opt bazel-bin)/cc/tools/scene_info"
+SCENE_INFO="$BIN/cc/tools/scene_info"
 
 step "load scenes (scene_info)"
 "$PY" experiments/scenes.py --profile "$PROFILE" --out "$OUT" \
@@ -49,7 +52,7 @@ step "scene 18 in the seed-compatible mode (row18.jsonl)"
 # Blender makes Suzanne headless; deterministic, so it is rerun every time.
 mkdir -p "$RESULTS"
 ROW18_TMP="$(mktemp -d)"
-"$(bazel info -c opt bazel-bin)/cc/seed/row18_tool" --work_dir "$ROW18_TMP" \
+"$BIN/cc/seed/row18_tool" --work_dir "$ROW18_TMP" \
   --expected "$ROOT/data/seed/row18.csv" > "$RESULTS/row18.jsonl.new"
 mv "$RESULTS/row18.jsonl.new" "$RESULTS/row18.jsonl"
 rm -rf "$ROW18_TMP"

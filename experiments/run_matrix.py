@@ -5,17 +5,26 @@ every obtained scene of a profile, with //cc/tools:kdrt.
     /usr/bin/python3 experiments/run_matrix.py --profile quick \
         --kdrt "$(bazel info -c opt bazel-bin)/cc/tools/kdrt" [--out out]
 
-Each (scene, variant) runs kdrt once (kdrt itself repeats build and render
---repeats times and keeps the median; a profile's "repeat_budget_s" stops
-repeating a step whose runs took that long in all). Locally, --jobs (or the
-profile's "jobs") kdrt processes run at once; each record notes how many. The record kdrt writes is appended,
+Each (scene, variant) runs kdrt once (kdrt warms each tracer up untimed, then
+times --repeats rounds alternating the kd-tree and Embree and keeps the
+median; a profile's "repeat_budget_s" stops the rounds of a step that took
+that long in all). Locally, --jobs (or the profile's "jobs") kdrt processes
+run at once: their untimed work (loading, warm-ups, counting passes, the
+Embree comparison) overlaps, their timed rounds never do (each holds the
+machine-wide timing lock, cc/base/timing_lock.h; the record's
+provenance.timed_beside is 0). The record kdrt writes is appended,
 with the profile and the runner's wall time, to OUT/results/kdtree.jsonl;
 a failure is appended as {"ok": false, ...} with the end of kdrt's stderr.
 Raw results are append-only: nothing is ever rewritten.
 
-Resumable: a (scene, variant, repeats, threads, embree) already recorded with
-"ok": true is not run again (--force runs it again; the analysis keeps the
-newest record). Images go to OUT/images/<scene>_<variant>.png.
+Resumable: a (scene, variant, repeats, threads, embree, source tree) already
+recorded with "ok": true is not run again (--force runs it again; the
+analysis keeps the newest record). The source tree is the code identity of
+cc/base/source_id.sh (experiments/provenance.py): any edit to the tools'
+sources, build files, presets or scene manifest, committed or not, gives a
+new one, and every job runs again under it (the simple first version: no
+attempt to tell which jobs an edit affects). The binary must be built from the
+same checkout (reproduce.sh builds it first). Images go to OUT/images/<scene>_<variant>.png.
 With --backend slurm the pending jobs go to a SLURM cluster as one
 `sbatch --array` (task i runs job i of OUT/slurm/<stamp>/jobs.json, and
 writes its record to parts/i.json). The command waits for the array, then
@@ -30,16 +39,15 @@ import argparse
 import concurrent.futures
 import json
 import os
-import shutil
 import socket
 import subprocess
 import sys
-import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
+import provenance  # noqa: E402  (the code identity of the checkout)
 import scenes as scene_runner  # noqa: E402  (manifest/index readers)
 
 MATRIX = os.path.join(ROOT, "experiments", "matrix.json")
@@ -57,12 +65,17 @@ def load_matrix(path=MATRIX):
 
 
 def job_key(scene, variant, settings):
+    """What makes two runs the same job: the scene, the variant, the
+    profile's settings and the code (settings["source_tree"], the checkout's
+    identity when the plan was made)."""
     return (scene, variant, int(settings["repeats"]), int(settings["threads"]),
-            settings["embree"])
+            settings["embree"], settings.get("source_tree"))
 
 
 def done_keys(results_path):
-    """Keys of the successful records already in results_path."""
+    """Keys of the successful records already in results_path that came from
+    an optimised build (provenance.timing_build: the analysis refuses the
+    timings of any other, so such a job is not done)."""
     keys = set()
     if not os.path.exists(results_path):
         return keys
@@ -72,7 +85,8 @@ def done_keys(results_path):
             if not line:
                 continue
             rec = json.loads(line)
-            if rec.get("ok"):
+            prov = rec.get("provenance") or {}
+            if rec.get("ok") and prov.get("timing_build", True):
                 keys.add(tuple(rec["job"]))
     return keys
 
@@ -88,11 +102,10 @@ def plan(profile, matrix, manifest, index, scenes=None, variants=None):
     return [(n, index[n], v) for n in names if n in index for v in chosen]
 
 
-def kdrt_command(kdrt, scene, variant, settings, out_dir=None):
-    cmd = [kdrt, "--scene", scene,
-           "--env", os.path.join(ROOT, "experiments", "presets",
-                                 variant + ".env"),
-           "--preset", variant,
+def kdrt_command(kdrt, scene, variant, settings, image=None):
+    # The preset by name (experiments/presets/<variant>.env holds the same
+    # configuration, checked by //cc/kdtree:env_file_test).
+    cmd = [kdrt, "--scene", scene, "--preset", variant,
            "--repeats", str(settings["repeats"]),
            "--threads", str(settings["threads"]),
            "--embree", settings["embree"]]
@@ -102,31 +115,24 @@ def kdrt_command(kdrt, scene, variant, settings, out_dir=None):
         # Also the renderer's fastest mode (kdrt --fast_render: record field
         # fast_render, the analysis's T_R_fast).
         cmd += ["--fast_render"]
-    return cmd + ["--out", out_dir] if out_dir else cmd
+    return cmd + ["--image", image] if image else cmd
 
 
-def run_kdrt(cmd, out, prefix="kdrt-", keep_files=None):
-    """Runs a kdrt command line (without --out) with --out set to a fresh
-    temporary directory under `out`. keep_files(tmp_dir), when given, may move
-    files out of it before it is removed. Returns (returncode, stderr, the
-    records kdrt wrote, wall seconds, the full command)."""
-    tmp = tempfile.mkdtemp(prefix=prefix, dir=out)
-    cmd = cmd + ["--out", tmp]
+def run_kdrt(cmd):
+    """Runs a kdrt command line; kdrt prints its record on stdout (and writes
+    its image where --image says). Returns (returncode, stderr, the records
+    printed, wall seconds, the command)."""
     start = time.time()
-    try:
-        proc = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, text=True)
-        wall = time.time() - start
-        lines = []
-        results = os.path.join(tmp, "results.jsonl")
-        if os.path.exists(results):
-            with open(results, encoding="utf-8") as f:
-                lines = [json.loads(x) for x in f if x.strip()]
-        if keep_files:
-            keep_files(tmp)
-        return proc.returncode, proc.stderr, lines, wall, cmd
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    proc = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True)
+    wall = time.time() - start
+    lines = []
+    for line in proc.stdout.splitlines():
+        try:
+            lines.append(json.loads(line))
+        except ValueError:
+            pass  # not a record
+    return proc.returncode, proc.stderr, lines, wall, cmd
 
 
 def node_info():
@@ -140,18 +146,12 @@ def node_info():
 
 
 def run_job(kdrt, scene, variant, settings, out, profile):
-    """Runs kdrt for one job; returns the record to append."""
-    def keep_images(tmp):
-        images = os.path.join(out, "images")
-        os.makedirs(images, exist_ok=True)
-        for name in os.listdir(tmp):
-            if name.endswith(".png"):
-                shutil.move(os.path.join(tmp, name),
-                            os.path.join(images, "%s_%s.png" % (scene, variant)))
-
-    cmd = kdrt_command(kdrt, scene, variant, settings)
-    returncode, stderr, lines, wall, cmd = run_kdrt(cmd, out,
-                                                    keep_files=keep_images)
+    """Runs kdrt for one job; returns the record to append. The image goes
+    to OUT/images/<scene>_<variant>.png."""
+    image = os.path.join(os.path.abspath(out), "images",
+                         "%s_%s.png" % (scene, variant))
+    cmd = kdrt_command(kdrt, scene, variant, settings, image)
+    returncode, stderr, lines, wall, cmd = run_kdrt(cmd)
     if returncode != 0 or not lines:
         return {"ok": False, "job": job_key(scene, variant, settings),
                 "scene": scene, "preset": variant, "profile": profile,
@@ -329,6 +329,10 @@ def main(argv=None):
         settings["repeats"] = args.repeats
     if args.embree:
         settings["embree"] = args.embree
+    ident = provenance.code_identity()
+    settings["source_tree"] = ident["source_tree"]
+    print("run_matrix: code %s (source tree %s)"
+          % (provenance.short(ident), ident["source_tree"]), file=sys.stderr)
     if not os.path.exists(args.kdrt):
         print("run_matrix: no kdrt binary at %s" % args.kdrt, file=sys.stderr)
         return 2

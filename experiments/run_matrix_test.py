@@ -8,6 +8,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+from unittest import mock
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -16,18 +17,22 @@ import accuracy  # noqa: E402
 import compare_results  # noqa: E402
 import run_matrix  # noqa: E402
 
+# Prints its record on stdout and writes its image to --image, as kdrt does.
 FAKE_KDRT = """#!/usr/bin/python3
-import json, sys, time
+import json, os, sys, time
 args = dict(zip(sys.argv[1::2], sys.argv[2::2]))
 if args["--scene"] == "broken":
     print("kdrt: cannot load scene", file=sys.stderr)
     sys.exit(1)
 rec = {"scene": args["--scene"], "preset": args["--preset"],
        "T_B": time.time() % 1, "T_R": 0.5, "N_IT": 3.0,
-       "tree": {"N_I": len(args["--preset"]), "N_L": 7}, "P_hit": 10}
-with open(args["--out"] + "/results.jsonl", "a") as f:
-    f.write(json.dumps(rec) + "\\n")
-open(args["--out"] + "/%s_%s.png" % (args["--scene"], args["--preset"]), "w").write("png")
+       "tree": {"N_I": len(args["--preset"]), "N_L": 7}, "P_hit": 10,
+       "provenance": {"source_tree": os.environ.get("KDTREE_SOURCE_TREE"),
+                      "timing_build": True}}
+print(json.dumps(rec))
+if "--image" in args:
+    os.makedirs(os.path.dirname(args["--image"]), exist_ok=True)
+    open(args["--image"], "w").write("png")
 """
 
 
@@ -79,6 +84,25 @@ class RunMatrixTest(unittest.TestCase):
         # Resumed: only the failed jobs run again.
         self.assertEqual(self.run_matrix(out), 0)
         self.assertEqual(len(self.records(out)), 6)
+
+    def test_a_new_source_tree_reruns_every_job(self):
+        """Nothing is edited: only the provenance the records carry changes
+        (as an edit to the sources would change it), and every job of the
+        old code runs again."""
+        out = os.path.join(self.tmp.name, "out")
+        old, new = "a" * 40, "b" * 40
+        with mock.patch.dict(os.environ, {"KDTREE_SOURCE_TREE": old}):
+            self.assertEqual(self.run_matrix(out), 0)
+            self.assertEqual(self.run_matrix(out), 0)  # only failures rerun
+        self.assertEqual(len(self.records(out)), 6)
+        with mock.patch.dict(os.environ, {"KDTREE_SOURCE_TREE": new}):
+            self.assertEqual(self.run_matrix(out), 0)
+        rerun = self.records(out)[6:]
+        self.assertEqual([(r["scene"], r["preset"], r["ok"]) for r in rerun], [
+            ("a", "median-16-2", True), ("a", "clipping", True),
+            ("broken", "median-16-2", False), ("broken", "clipping", False)])
+        self.assertEqual({r["job"][-1] for r in rerun}, {new})
+        self.assertEqual(rerun[0]["provenance"]["source_tree"], new)
 
     def test_two_jobs_at_once_keep_the_job_order(self):
         out = os.path.join(self.tmp.name, "out")
@@ -143,7 +167,7 @@ class RunMatrixTest(unittest.TestCase):
             rec = json.load(f)
         self.assertEqual((rec["scene"], rec["preset"], rec["ok"]),
                          ("a", "pruning", True))
-        self.assertEqual(rec["job"], ["a", "pruning", 1, 1, "off"])
+        self.assertEqual(rec["job"], ["a", "pruning", 1, 1, "off", None])
 
     def test_compare_ignores_timings_but_not_statistics(self):
         a = os.path.join(self.tmp.name, "a")

@@ -2,8 +2,8 @@
 // records the report's measurements (tables 1-10) as one JSON line.
 //
 //   bazel build --config=opt //cc/tools:kdrt
-//   bazel-bin/cc/tools/kdrt --mesh=/tmp/gl/usr/share/glmark2/models/bunny.obj
-//       --preset=clipping-pruning --out=/tmp/kdrt --repeats=3 --embree=medium
+//   "$(bazel info --config=opt bazel-bin)"/cc/tools/kdrt --scene=bunny --preset=clipping-pruning
+//       --repeats=3 --embree=medium --image=/tmp/bunny.png --record=/tmp/kdrt.jsonl
 //
 // Steps (timing method: timed_render.h; timed steps alone under the
 // machine-wide TimingLock, cc/base/timing_lock.h): load the mesh (through the
@@ -18,9 +18,9 @@
 // optionally dump the rays; then time the renders in `repeats` rounds
 // alternating the tracers (T_R = median; Embree's time over the kd-tree's,
 // per round, then the median: perf_ratio_kd_over_embree). The record carries
-// the provenance of its numbers (cc/base/provenance.h). Writes
-// <out>/<scene>_<label>.png and appends the record to <out>/results.jsonl;
-// the record is also printed on stdout. Exit code 1 on any error.
+// the provenance of its numbers (cc/base/provenance.h). Prints the record on
+// stdout (one JSON line), writes the image to --image and appends the record
+// to --record when given. Exit code 1 on any error.
 //
 // perf_krays = 640,000 / T_R / 1000 in the report's sense: primary rays per
 // second of render time although T_R includes the shadow rays
@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -77,7 +78,8 @@ ABSL_FLAG(std::string, pruning, "", "Override usePruning (on/off).");
 ABSL_FLAG(std::string, shadows, "", "Override RTCore.castShadowRays (on/off).");
 ABSL_FLAG(std::string, seed_compatible, "", "Override the seed-compatible mode (on/off).");
 ABSL_FLAG(std::string, label, "", "Name of the configuration in file names and records (default: derived).");
-ABSL_FLAG(std::string, out, "", "Output directory: <scene>_<label>.png and results.jsonl ('' = no files).");
+ABSL_FLAG(std::string, image, "", "Write the rendered image here (PNG; '' = none).");
+ABSL_FLAG(std::string, record, "", "Also append the record (one JSON line) to this file ('' = stdout only).");
 ABSL_FLAG(int, threads, 1, "Render threads (1 = no TBB); also Embree's device threads.");
 ABSL_FLAG(int, repeats, 5, "Builds and renders per tracer; medians are reported.");
 ABSL_FLAG(double, repeat_budget_s, 0,
@@ -137,6 +139,15 @@ uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
 }
 
 using Json = nlohmann::ordered_json;
+
+// Creates the file's directory, then writes it with `write`.
+absl::Status WriteFile(const std::string& path, const std::function<absl::Status(const std::string&)>& write) {
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec) return absl::InternalError(absl::StrCat(dir.string(), ": cannot create directory: ", ec.message()));
+  return write(path);
+}
 
 Json TraversalJson(const TraversalCounters& c) {
   const double n = c.rays ? static_cast<double>(c.rays) : 1.0;
@@ -295,14 +306,11 @@ absl::Status Run() {
   // Image and record.
   const RenderResult& r = kl.last;
   const double pixels = static_cast<double>(view.width) * view.height;
-  const std::string out = FromInvocationDir(absl::GetFlag(FLAGS_out));
-  std::string png = "";
-  if (!out.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    if (ec) return absl::InternalError(absl::StrCat(out, ": cannot create directory: ", ec.message()));
-    png = absl::StrCat(out, "/", scene, "_", rc->label, ".png");
-    if (!(st = WritePngRgb8(png, r.width, r.height, r.rgb)).ok()) return st;
+  const std::string png = FromInvocationDir(absl::GetFlag(FLAGS_image));
+  if (!png.empty() && !(st = WriteFile(png, [&](const std::string& p) {
+                          return WritePngRgb8(p, r.width, r.height, r.rgb);
+                        })).ok()) {
+    return st;
   }
   Json rec = {{"scene", scene}, {"mesh", mesh}, {"n_tri", soup->size()}, {"load_s", load.load_seconds},
               {"preset", rc->preset}, {"label", rc->label},
@@ -376,12 +384,16 @@ absl::Status Run() {
   const std::string line = rec.dump(-1, ' ', false, Json::error_handler_t::replace);
   std::printf("%s\n", line.c_str());
   std::fflush(stdout);
-  if (!out.empty()) {
-    const std::string path = absl::StrCat(out, "/results.jsonl");
-    FILE* f = std::fopen(path.c_str(), "a");
-    if (f == nullptr || std::fprintf(f, "%s\n", line.c_str()) < 0 || std::fclose(f) != 0) {
-      return absl::InternalError(absl::StrCat(path, ": cannot append"));
-    }
+  const std::string record_path = FromInvocationDir(absl::GetFlag(FLAGS_record));
+  if (!record_path.empty() && !(st = WriteFile(record_path, [&](const std::string& p) {
+                                  FILE* f = std::fopen(p.c_str(), "a");
+                                  if (f != nullptr && std::fprintf(f, "%s\n", line.c_str()) >= 0 &&
+                                      std::fclose(f) == 0) {
+                                    return absl::OkStatus();
+                                  }
+                                  return absl::InternalError(absl::StrCat(p, ": cannot append the record"));
+                                })).ok()) {
+    return st;
   }
   if (counts.result_mismatches != 0) {
     return absl::InternalError(absl::StrCat(counts.result_mismatches, " rays differ between the counting and the fast traversal"));

@@ -42,13 +42,14 @@ camera { position 0.5 2 6 look_at 0 -0.5 0 }
 resolution 64 48
 VIEW
 
-"$KDRT" --mesh=scene.obj --view=lit.view --out=out --repeats=2 --cache_dir= \
-  --dump_rays=rays.bin --embree=medium > lit.json
-"$KDRT" --mesh=scene.obj --view=dark.view --out=out --repeats=1 --cache_dir= \
+"$KDRT" --mesh=scene.obj --view=lit.view --image=out/scene_clipping-pruning.png --record=out/results.jsonl \
+  --repeats=2 --cache_dir= --dump_rays=rays.bin --embree=medium > lit.json
+"$KDRT" --mesh=scene.obj --view=dark.view --image=out/scene_median-24-8.png \
+  --record=out/results.jsonl --repeats=1 --cache_dir= \
   --preset=median-24-8 > dark.json
-"$KDRT" --mesh=scene.obj --view=lit.view --out=out2 --repeats=1 --cache_dir= --threads=2 \
+"$KDRT" --mesh=scene.obj --view=lit.view --image=out2/x.png --repeats=1 --cache_dir= --threads=2 \
   --max_leaf_size=1 > lit2.json
-"$KDRT" --mesh=scene.obj --view=lit.view --out=out3 --repeats=1 --cache_dir= --threads=1 \
+"$KDRT" --mesh=scene.obj --view=lit.view --repeats=1 --cache_dir= --threads=1 \
   --max_leaf_size=1 --fast_render > lit1.json
 # A budget of ~0 s: every timed step runs once although --repeats=4.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=4 --repeat_budget_s=1e-12 --cache_dir= \
@@ -60,6 +61,7 @@ grep -q "bogus" err.txt
 
 test -s out/scene_clipping-pruning.png
 test -s out/scene_median-24-8.png
+test -s out2/x.png  # its directory made by kdrt
 test "$(wc -l < out/results.jsonl)" -eq 2
 # 32 + 56 n + 8 bytes
 size=$(stat -c %s rays.bin)
