@@ -23,6 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from analysis import latex  # noqa: E402
+from analysis import provenance  # noqa: E402
 
 RESULTS_FILE = "accuracy.jsonl"
 BASELINE = "report clipping-pruning"
@@ -137,6 +138,7 @@ def figure(ctx, recs, scenes, steps):
 
 def generate(ctx):
     recs, steps = load(ctx.results(RESULTS_FILE))
+    provenance.check(ctx, recs.values(), "the accuracy study (%s)" % RESULTS_FILE)
     scenes = sorted({s for s, _ in recs})
     if not recs:
         ctx.write("accuracy_table.tex", "\\emph{The accuracy-versus-time study "

@@ -7,16 +7,21 @@ import unittest
 
 from analysis import accuracy
 from analysis import context
+from analysis import provenance
+from analysis import testdata
 
 STEPS = [("report", "report clipping-pruning"), ("bins", "bins 32"),
          ("bins", "exact sweep"), ("clipping", "box clipping"),
          ("clipping", "perfect splits")]
 
 
-def rec(scene, knob, step, t_b, t_r, sah, ok=True):
-    return {"ok": ok, "scene": scene, "knob": knob, "step": step,
-            "T_B": t_b, "T_R": t_r, "sah_cost": sah, "N_IT": sah / 10.0,
-            "N_TR": sah / 20.0, "mem_report_mb": 2.0}
+def rec(scene, knob, step, t_b, t_r, sah, ok=True, **over):
+    """A kdrt record (analysis/testdata.py) with experiments/accuracy.py's
+    knob and step."""
+    return testdata.kdrt_record(
+        scene, "sah-hybrid", ok=ok, knob=knob, step=step, T_B=t_b, T_R=t_r,
+        sah_cost=sah, N_IT=sah / 10.0, N_TR=sah / 20.0, mem_report_mb=2.0,
+        **over)
 
 
 # Fixture: on both scenes the exact sweep doubles T_B of bins 32 and lowers
@@ -68,6 +73,20 @@ class AccuracyTest(unittest.TestCase):
         self.assertTrue(os.path.getsize(os.path.join(out, "accuracy_pareto.pdf")) > 1000)
         self.assertIn("accuracy_pareto.pdf",
                       open(os.path.join(out, "accuracy_figure.tex")).read())
+
+    def test_two_provenances_are_refused(self):
+        other = testdata.provenance(source_tree="d" * 40)
+        records = RECORDS + [rec("city", "bins", "bins 32", 2.0, 4.0, 80.0,
+                                 provenance=other)]
+        with self.assertRaisesRegex(provenance.ProvenanceError,
+                                    "accuracy study.*city/sah-hybrid/bins 32"):
+            self.run_generate(records)
+
+    def test_unoptimised_timings_are_refused(self):
+        slow = testdata.provenance(timing_build=False)
+        with self.assertRaises(provenance.UnoptimizedTimingError):
+            self.run_generate([rec("bunny", "report", "report clipping-pruning",
+                                   1.0, 2.0, 100.0, provenance=slow)])
 
     def test_pareto_front(self):
         pts = [(1.0, 10.0), (2.0, 5.0), (3.0, 6.0), (0.5, 20.0), (2.0, 5.0)]

@@ -5,6 +5,10 @@ under `ctx.out_dir` (via `ctx.write`) and returns the LaTeX macros it defines
 as {MacroName: (value, raw)} (`raw` = value is LaTeX already, not escaped).
 make_all.py calls the generators in order and writes all macros to
 macros.tex.
+
+The override flags of make_all's command line ride along as attributes:
+allow_mixed_provenance, allow_mixed_cpus and allow_unoptimized_timings
+(analysis/provenance.py's checks read them).
 """
 
 import os
@@ -14,7 +18,12 @@ from analysis import latex
 
 
 class Context:
-    def __init__(self, results_dir, manifest_path, out_dir, seed_dir=None):
+    def __init__(self, results_dir, manifest_path, out_dir, seed_dir=None,
+                 allow_mixed_provenance=False, allow_mixed_cpus=False,
+                 allow_unoptimized_timings=False):
+        self.allow_mixed_provenance = allow_mixed_provenance
+        self.allow_mixed_cpus = allow_mixed_cpus
+        self.allow_unoptimized_timings = allow_unoptimized_timings
         self.results_dir = results_dir
         self.manifest_path = manifest_path
         self.out_dir = out_dir

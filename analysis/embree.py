@@ -6,20 +6,32 @@ exact arithmetic: grazing (the ray passes within 4 ulps of an edge), at the
 origin (the origin within 8 ulps of the plane of a reported triangle), other
 (including a hit below the watertight t bound); and which tracer was wrong.
 
-Embree runs in the same kdrt process as each kd-tree run, on its rays, so a
-scene has one Embree run per variant. Its times are the median of those runs:
-on a loaded machine a single run's time varies (in the full profile's first
-run Embree's T_R on one scene ranged from 0.17 to 0.44 s over the nine), and
-dividing by the Embree run that happened to sit beside the fastest kd-tree run
-favoured whichever run Embree was slow in.
+Embree runs in the same kdrt process as a kd-tree run, on its rays, its timed
+rounds alternating with the kd-tree's. The kd/Embree ratio of a variant on a
+scene is that record's paired median: the median over the rounds of Embree's
+T_R over the kd-tree's T_R in the same round (embree.paired_ratio; for the
+fast mode fast_render.paired_ratio), so the load of the machine during a
+round hits both tracers alike. A record without paired ratios (made before
+they were recorded) gives no ratio: its cells are dashes and the caption
+counts them. Embree's times shown are the medians of all its timed rounds on
+the scene (over every kd-tree run that ran it).
 
-Output: embree.tex and macros (median and range of the perf ratio).
+Output: embree.tex, embree_ratio.pdf (the paired ratios per scene with their
+spread over the rounds; embree_ratio.tex is its figure) and macros (median
+and range of the perf ratios).
 """
 
 import statistics
 
-from analysis import kdtree_results as kr
-from analysis import latex
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from analysis import figures  # noqa: E402
+from analysis import kdtree_results as kr  # noqa: E402
+from analysis import latex  # noqa: E402
+from analysis import provenance  # noqa: E402
 
 FINAL = "clipping-pruning"
 BEYOND = "sah-packet"  # our fastest trees (kdtree_results.BEYOND)
@@ -34,63 +46,92 @@ def _sum(recs, col):
     return total
 
 
+def _runs(r, runs_col, median_col):
+    """A record's timed rounds of a column (its median alone when the record
+    has no rounds)."""
+    runs = r[runs_col]
+    if isinstance(runs, list) and runs:
+        return [float(x) for x in runs]
+    return [float(r[median_col])] if kr.present(r[median_col]) else []
+
+
 def embree_medians(df, scene):
-    """Embree's T_B and T_R on a scene: the medians of its runs beside every
-    kd-tree run (the nine and the variants beyond them), and their count;
-    (None, None, 0) without one."""
-    runs = []
+    """Embree's T_B and T_R on a scene: the medians of all its timed rounds
+    in every kd-tree run of the scene that ran it (the nine and the variants
+    beyond them), and how many runs did; (None, None, 0) without one."""
+    t_b, t_r, n = [], [], 0
     for v in kr.VARIANTS + kr.BEYOND:
-        if (scene, v) in df.index:
+        if (scene, v) in df.index and kr.present(df.loc[(scene, v)]["embree_T_R"]):
             r = df.loc[(scene, v)]
-            if kr.present(r["embree_T_R"]):
-                runs.append(r)
-    if not runs:
+            n += 1
+            t_b += _runs(r, "embree_T_B_runs", "embree_T_B")
+            t_r += _runs(r, "embree_T_R_runs", "embree_T_R")
+    if not n:
         return None, None, 0
-    t_b = [float(r["embree_T_B"]) for r in runs if kr.present(r["embree_T_B"])]
-    return (statistics.median(t_b) if t_b else None,
-            statistics.median(float(r["embree_T_R"]) for r in runs), len(runs))
+    return (statistics.median(t_b) if t_b else None, statistics.median(t_r), n)
+
+
+def paired(r, column):
+    """(paired median, [ratio per round]) of a record's ratio column
+    (embree_ratio or fast_ratio); (None, []) without one."""
+    if r is None or not kr.present(r[column]):
+        return None, []
+    runs = r[column + "_runs"]
+    return float(r[column]), [float(x) for x in runs] if isinstance(runs, list) else []
+
+
+def _with_embree(df, scene, variant):
+    if (scene, variant) not in df.index:
+        return None
+    r = df.loc[(scene, variant)]
+    return r if kr.present(r["embree_T_R"]) else None
+
+
+def row(df, scene, recs):
+    """One scene's row: the fastest of the nine (recs: [(variant, record)]
+    of the runs with Embree), clipping-pruning, sah-packet and its fast mode,
+    each with its paired ratio and its rounds."""
+    best_v, best = min(recs, key=lambda vr: vr[1]["T_R"])
+    final = dict(recs).get(FINAL)
+    beyond = _with_embree(df, scene, BEYOND)
+    emb_t_b, emb_t_r, n_runs = embree_medians(df, scene)
+    out = {"scene": scene, "n_tri": best["n_tri"], "best_variant": best_v,
+           "best_T_R": best["T_R"], "best_T_B": best["T_B"],
+           "final_T_R": None if final is None else final["T_R"],
+           "embree_T_B": emb_t_b, "embree_T_R": emb_t_r, "embree_runs": n_runs,
+           "beyond_T_B": None if beyond is None else beyond["T_B"],
+           "beyond_T_R": None if beyond is None else beyond["T_R"],
+           "unpaired": sum(1 for r in [r for _, r in recs] + [beyond]
+                           if r is not None and not kr.present(r["embree_ratio"])),
+           "grazing": _sum(recs, "embree_grazing"),
+           "at_origin": _sum(recs, "embree_at_origin"),
+           "other": _sum(recs, "embree_other") + _sum(recs, "embree_t_guard"),
+           "kd_wrong": _sum(recs, "kd_wrong"),
+           "embree_wrong": _sum(recs, "embree_wrong"), "runs": len(recs)}
+    for key, r, column in (("best", best, "embree_ratio"),
+                           ("final", final, "embree_ratio"),
+                           ("beyond", beyond, "embree_ratio"),
+                           ("fast", beyond, "fast_ratio")):
+        out["ratio_" + key], out["runs_" + key] = paired(r, column)
+    return out
 
 
 def rows(df):
     out = []
     for scene in kr.scenes_in_order(df):
-        recs = [(v, df.loc[(scene, v)]) for v in kr.VARIANTS
-                if (scene, v) in df.index]
-        recs = [(v, r) for v, r in recs if kr.present(r["embree_T_R"])]
-        if not recs:
-            continue
-        best_v, best = min(recs, key=lambda vr: vr[1]["T_R"])
-        final = dict(recs).get(FINAL)
-        beyond = None
-        if (scene, BEYOND) in df.index:
-            b = df.loc[(scene, BEYOND)]
-            if kr.present(b["embree_T_R"]):
-                beyond = b
-        # Embree ran beside every kd-tree run of the scene; its times are the
-        # medians of those runs (see the module doc).
-        emb_t_b, emb_t_r, n_runs = embree_medians(df, scene)
-        out.append({
-            "scene": scene, "n_tri": best["n_tri"], "best_variant": best_v,
-            "best_T_R": best["T_R"], "best_T_B": best["T_B"],
-            "final_T_R": None if final is None else final["T_R"],
-            "embree_T_B": emb_t_b, "embree_T_R": emb_t_r,
-            "embree_runs": n_runs,
-            "ratio_best": emb_t_r / best["T_R"],
-            "ratio_final": None if final is None else emb_t_r / final["T_R"],
-            "beyond_T_B": None if beyond is None else beyond["T_B"],
-            "beyond_T_R": None if beyond is None else beyond["T_R"],
-            "ratio_beyond": None if beyond is None else emb_t_r / beyond["T_R"],
-            "ratio_fast": (emb_t_r / beyond["T_R_fast"]
-                           if beyond is not None and kr.present(beyond["T_R_fast"])
-                           else None),
-            "grazing": _sum(recs, "embree_grazing"),
-            "at_origin": _sum(recs, "embree_at_origin"),
-            "other": _sum(recs, "embree_other") + _sum(recs, "embree_t_guard"),
-            "kd_wrong": _sum(recs, "kd_wrong"),
-            "embree_wrong": _sum(recs, "embree_wrong"),
-            "runs": len(recs),
-        })
+        recs = [(v, _with_embree(df, scene, v)) for v in kr.VARIANTS]
+        recs = [(v, r) for v, r in recs if r is not None]
+        if recs:
+            out.append(row(df, scene, recs))
     return out
+
+
+def _time(v):
+    return latex.fmt_float(v, 3) if kr.present(v) and v else latex.DASH
+
+
+def _ratio(v):
+    return "%.2f" % v if v is not None else latex.DASH
 
 
 def render(data):
@@ -104,32 +145,32 @@ def render(data):
         body.append([
             latex.escape(r["scene"]), latex.fmt_int(int(r["n_tri"])),
             latex.escape(kr.TITLES[r["best_variant"]]),
-            latex.fmt_float(r["best_T_B"], 3),
-            latex.fmt_float(r["embree_T_B"], 3) if r["embree_T_B"] else latex.DASH,
-            latex.fmt_float(r["best_T_R"], 3), latex.fmt_float(r["embree_T_R"], 3),
-            "%.2f" % r["ratio_best"],
-            latex.fmt_float(r["final_T_R"], 3) if r["final_T_R"] else latex.DASH,
-            "%.2f" % r["ratio_final"] if r["ratio_final"] else latex.DASH,
-            latex.fmt_float(r["beyond_T_B"], 3) if r["beyond_T_B"] else latex.DASH,
-            latex.fmt_float(r["beyond_T_R"], 3) if r["beyond_T_R"] else latex.DASH,
-            "%.2f" % r["ratio_beyond"] if r["ratio_beyond"] else latex.DASH,
-            "%.2f" % r["ratio_fast"] if r["ratio_fast"] else latex.DASH,
+            _time(r["best_T_B"]), _time(r["embree_T_B"]),
+            _time(r["best_T_R"]), _time(r["embree_T_R"]), _ratio(r["ratio_best"]),
+            _time(r["final_T_R"]), _ratio(r["ratio_final"]),
+            _time(r["beyond_T_B"]), _time(r["beyond_T_R"]),
+            _ratio(r["ratio_beyond"]), _ratio(r["ratio_fast"]),
             latex.fmt_int(r["grazing"]), latex.fmt_int(r["at_origin"]),
             latex.fmt_int(r["other"]), latex.fmt_int(r["kd_wrong"]),
             latex.fmt_int(r["embree_wrong"])])
     if not body:
         body = [["\\emph{no Embree runs}"] + [""] * (len(header) - 1)]
+    unpaired = sum(r["unpaired"] for r in data)
     caption = ("Embree 3 (MEDIUM quality build, one thread, "
                "\\texttt{rtcIntersect1}/\\texttt{rtcOccluded1}) on the same rays "
-               "as our kd-tree. Embree's times are the medians of its runs on "
-               "the scene, one beside each kd-tree run. perf kd/Embree is "
-               "Embree's render time over ours (1 = as fast as Embree). SAH-4 is our tree beyond the "
+               "as our kd-tree, in the same process, the two tracers' timed "
+               "rounds alternating. Times are medians of the timed rounds "
+               "(Embree's over every run of the scene). perf kd/Embree and "
+               "the other ratios are paired: the median over the rounds of a "
+               "run of Embree's render time over ours in the same round (1 = "
+               "as fast as Embree; Figure~\\ref{fig:embree-ratio} shows their "
+               "spread). SAH-4 is our tree beyond the "
                "report (preset \\texttt{sah-packet}: the full SAH counted per "
                "packet of 4, $K_T = 45$, hybrid split search, clipping and pruning); "
-               "fast/Embree is Embree's render time over that tree's in our renderer's "
+               "fast/Embree is the paired ratio of that tree in our renderer's "
                "fastest mode (primary and shadow rays in packets of $2\\times 2$ pixels, "
                "shadow rays leaving their origin triangle untested; the same image). "
-               "Disagreements are summed over "
+               "%sDisagreements are summed over "
                "the nine variants and judged in exact arithmetic: "
                "``grazing'' rays pass within 4 ulps of a triangle edge "
                "(measured across the ray), ``at origin'' rays start within 8 "
@@ -137,50 +178,89 @@ def render(data):
                "sign of $t$ is within rounding; ``other'' would be real "
                "errors. The last two columns count the rays on which exact "
                "arithmetic says the kd-tree, or Embree, is the one that is "
-               "wrong.")
+               "wrong." % (
+                   "%d run%s recorded no paired ratio (made before kdrt paired "
+                   "its rounds) and give%s none. " % (
+                       unpaired, "" if unpaired == 1 else "s",
+                       "s" if unpaired == 1 else "") if unpaired else ""))
     return latex.booktabs(header, body, align="lrlrrrrrrrrrrrrrrrr", caption=caption,
                           label="tab:embree", size="scriptsize")
 
 
-def generate(ctx):
-    df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
-    data = rows(df)
-    ctx.write("embree.tex", render(data))
-    ratios = [r["ratio_best"] for r in data]
+# The figure's series: (row key, label, marker).
+SERIES = [("beyond", "SAH-4 (sah-packet), single rays", "o"),
+          ("fast", "SAH-4, fastest mode (packets)", "s"),
+          ("final", "Clipping pruning (the report's final)", "^")]
 
-    def ratio_macros(prefix, key):
-        """Median, range and count of a ratio column over the scenes that have
-        it, and how many of those of 50,000 triangles or more reach 0.7."""
-        values = [r[key] for r in data if r[key] is not None]
-        big = [r[key] for r in data if r[key] is not None and r["n_tri"] >= 50000]
 
-        def stat(f):
-            return ("%.2f" % f(values) if values else latex.DASH, True)
+def figure(ctx, data, filename="embree_ratio.pdf"):
+    """Per scene, each series' paired ratio (point) and its range over the
+    rounds (error bar), and a line at 1 (as fast as Embree)."""
+    with plt.rc_context(figures.STYLE):
+        fig, ax = plt.subplots(figsize=(6.3, 3.4))
+        xs = list(range(1, len(data) + 1))
+        for k, (key, label, marker) in enumerate(SERIES):
+            pts = [(x + 0.2 * (k - 1), r["ratio_" + key], r["runs_" + key] or [r["ratio_" + key]])
+                   for x, r in zip(xs, data) if r["ratio_" + key] is not None]
+            if pts:
+                ys = [y for _, y, _ in pts]
+                err = [[y - min(runs) for _, y, runs in pts],
+                       [max(runs) - y for _, y, runs in pts]]
+                ax.errorbar([x for x, _, _ in pts], ys, yerr=err, fmt=marker,
+                            markersize=3.5, capsize=2, linewidth=0.8, label=label)
+        ax.axhline(1.0, color="black", linewidth=0.8, linestyle="--")
+        ax.set_xticks(xs)
+        ax.set_xticklabels([r["scene"] for r in data], rotation=90, fontsize=6)
+        ax.set_ylabel("Embree $T_R$ / kd-tree $T_R$ (paired per round)")
+        ax.grid(axis="y", linewidth=0.4, alpha=0.5)
+        if ax.get_legend_handles_labels()[1]:
+            ax.legend(loc="upper center", bbox_to_anchor=(0.5, 1.16), ncol=3,
+                      frameon=False)
+        else:
+            ax.text(0.5, 0.5, "no paired ratios", ha="center", va="center",
+                    transform=ax.transAxes)
+        fig.tight_layout()
+        fig.savefig(ctx.path(filename))
+        plt.close(fig)
+    ctx.written.append(filename)
 
-        return {
-            prefix + "Scenes": (str(len(values)), False),
-            prefix + "RatioMedian": stat(statistics.median),
-            prefix + "RatioMin": stat(min),
-            prefix + "RatioMax": stat(max),
-            prefix + "BigScenes": (str(len(big)), False),
-            prefix + "BigAtLeastSeventy": (str(sum(x >= 0.7 for x in big)), False),
-        }
+
+def ratio_macros(data, prefix, key):
+    """Median, range and count of a ratio column over the scenes that have
+    it, and how many of those of 50,000 triangles or more reach 0.7."""
+    values = [r[key] for r in data if r[key] is not None]
+    big = [r[key] for r in data if r[key] is not None and r["n_tri"] >= 50000]
+
+    def stat(f):
+        return ("%.2f" % f(values) if values else latex.DASH, True)
 
     return {
-        **ratio_macros("EmbreePacket", "ratio_beyond"),
-        **ratio_macros("EmbreeFast", "ratio_fast"),
-        "EmbreeScenes": (str(len(data)), False),
-        "EmbreeRatioMedian": ("%.2f" % statistics.median(ratios) if ratios
-                              else latex.DASH, True),
-        "EmbreeRatioMin": ("%.2f" % min(ratios) if ratios else latex.DASH, True),
-        "EmbreeRatioMax": ("%.2f" % max(ratios) if ratios else latex.DASH, True),
-        "EmbreeOtherDisagreements": (latex.fmt_int(sum(r["other"] for r in data)),
-                                     False),
-        "EmbreeGrazingDisagreements": (latex.fmt_int(
-            sum(r["grazing"] for r in data)), False),
-        "EmbreeAtOriginDisagreements": (latex.fmt_int(
-            sum(r["at_origin"] for r in data)), False),
-        "EmbreeKdWrong": (latex.fmt_int(sum(r["kd_wrong"] for r in data)), False),
-        "EmbreeEmbreeWrong": (latex.fmt_int(
-            sum(r["embree_wrong"] for r in data)), False),
+        prefix + "Scenes": (str(len(values)), False),
+        prefix + "RatioMedian": stat(statistics.median),
+        prefix + "RatioMin": stat(min),
+        prefix + "RatioMax": stat(max),
+        prefix + "BigScenes": (str(len(big)), False),
+        prefix + "BigAtLeastSeventy": (str(sum(x >= 0.7 for x in big)), False),
+    }
+
+
+def generate(ctx):
+    df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
+    provenance.check_frame(ctx, df, "the Embree table")
+    data = rows(df)
+    ctx.write("embree.tex", render(data))
+    figure(ctx, data)
+
+    def total(key):
+        return (latex.fmt_int(sum(r[key] for r in data)), False)
+
+    return {
+        **ratio_macros(data, "Embree", "ratio_best"),
+        **ratio_macros(data, "EmbreePacket", "ratio_beyond"),
+        **ratio_macros(data, "EmbreeFast", "ratio_fast"),
+        "EmbreeOtherDisagreements": total("other"),
+        "EmbreeGrazingDisagreements": total("grazing"),
+        "EmbreeAtOriginDisagreements": total("at_origin"),
+        "EmbreeKdWrong": total("kd_wrong"),
+        "EmbreeEmbreeWrong": total("embree_wrong"),
     }

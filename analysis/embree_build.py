@@ -4,8 +4,13 @@ Per scene with a run of sah-packet-binned (the full SAH counted per packet of
 four, 16 bins on the driving axis, no clipping: cc/kdtree/config.h), its
 build and render times beside the report's fastest-building binned variant
 (binning-8-driving) and Embree 3's MEDIUM build on the same rays, one thread.
-Embree's times are the medians of its runs on the scene, one beside each
-kd-tree run (embree.embree_medians, as in Table tab:embree).
+Embree's times shown are the medians of all its timed rounds on the scene
+(embree.embree_medians, as in Table tab:embree). The binned tree's ratios to
+Embree are paired per round within its own run: render, the record's
+embree.paired_ratio; build, the median over the rounds of Embree's T_B over
+ours in the same round (both *_runs lists hold the same rounds; a run whose
+lists differ in length gives no build ratio). A run without paired rounds
+gives no ratio to Embree.
 
 Output: embree_build.tex and macros (medians of the ratios, and the number
 of scenes where the binned tree both builds and renders faster than the
@@ -17,6 +22,7 @@ import statistics
 from analysis import embree
 from analysis import kdtree_results as kr
 from analysis import latex
+from analysis import provenance
 
 FAST = "sah-packet-binned"
 REPORT = "binning-8-driving"
@@ -35,12 +41,25 @@ def rows(df):
         row = {"scene": scene, "n_tri": fast["n_tri"],
                "T_B": float(fast["T_B"]), "T_R": float(fast["T_R"]),
                "report_T_B": None, "report_T_R": None,
-               "embree_T_B": emb_t_b, "embree_T_R": emb_t_r}
+               "embree_T_B": emb_t_b, "embree_T_R": emb_t_r,
+               "build_ratio": paired_build(fast),
+               "perf_ratio": embree.paired(fast, "embree_ratio")[0]}
         if report is not None and kr.present(report["T_B"]) and kr.present(report["T_R"]):
             row["report_T_B"] = float(report["T_B"])
             row["report_T_R"] = float(report["T_R"])
         out.append(row)
     return out
+
+
+def paired_build(r):
+    """Median over the rounds of Embree's T_B over the tree's in the same
+    round; None unless the run recorded rounds of both and as many."""
+    ours, theirs = r["T_B_runs"], r["embree_T_B_runs"]
+    if not kr.present(r["embree_ratio"]) or not isinstance(ours, list) \
+            or not isinstance(theirs, list) or len(ours) != len(theirs) \
+            or not ours or not all(ours):
+        return None
+    return statistics.median(e / k for e, k in zip(theirs, ours))
 
 
 def _ratio(a, b):
@@ -66,9 +85,9 @@ def render(data):
         body.append([
             latex.escape(r["scene"]), latex.fmt_int(int(r["n_tri"])),
             cell(r["embree_T_B"]), cell(r["report_T_B"]), cell(r["T_B"]),
-            ratio(_ratio(r["embree_T_B"], r["T_B"])),
+            ratio(r["build_ratio"]),
             cell(r["embree_T_R"]), cell(r["report_T_R"]), cell(r["T_R"]),
-            ratio(_ratio(r["embree_T_R"], r["T_R"])),
+            ratio(r["perf_ratio"]),
             ratio(_ratio(r["report_T_B"], r["T_B"])),
             ratio(_ratio(r["report_T_R"], r["T_R"]))])
     if not body:
@@ -78,16 +97,20 @@ def render(data):
                "4, $K_T = 45$, 16 bins on the driving axis, no clipping), of the "
                "report's fastest-building binned variant (B8D: binning 8, "
                "driving axis) and of Embree 3 (MEDIUM build), one thread, on the "
-               "same rays. $T_B$ is mesh in memory to traversable tree. Ratios "
-               "above 1 favour the binned tree: build Embree/binned is Embree's "
-               "build time over ours; perf binned/Embree is Embree's render time "
-               "over ours; binned/B8D divides the report variant's time by ours.")
+               "same rays. $T_B$ is mesh in memory to traversable tree; times are "
+               "medians of the timed rounds (Embree's over every run of the "
+               "scene). Ratios above 1 favour the binned tree: build "
+               "Embree/binned is Embree's build time over ours and perf "
+               "binned/Embree Embree's render time over ours, each the median "
+               "over the rounds of one run in which the two alternated; "
+               "binned/B8D divides the report variant's time by ours.")
     return latex.booktabs(header, body, align="lrrrrrrrrrrr", caption=caption,
                           label="tab:embree-build", size="scriptsize")
 
 
 def generate(ctx):
     df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
+    provenance.check_frame(ctx, df, "the binned-build table")
     data = rows(df)
     ctx.write("embree_build.tex", render(data))
 
@@ -95,8 +118,8 @@ def generate(ctx):
         values = [v for v in values if v is not None]
         return ("%.2f" % statistics.median(values) if values else latex.DASH, True)
 
-    build_emb = [_ratio(r["embree_T_B"], r["T_B"]) for r in data]
-    perf_emb = [_ratio(r["embree_T_R"], r["T_R"]) for r in data]
+    build_emb = [r["build_ratio"] for r in data]
+    perf_emb = [r["perf_ratio"] for r in data]
     build_rep = [_ratio(r["report_T_B"], r["T_B"]) for r in data]
     perf_rep = [_ratio(r["report_T_R"], r["T_R"]) for r in data]
     both = sum(1 for b, p in zip(build_rep, perf_rep)

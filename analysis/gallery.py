@@ -62,5 +62,5 @@ def generate(ctx):
             "variants are identical).}\n\\label{%s}\n\\end{figure}\n"
             % (cells, "" if start == 0 else " (continued)", label))
     ctx.write("gallery.tex", "".join(figures) if figures else
-              "\\emph{No rendered images (run experiments/run_matrix.py).}\n")
+              "\\emph{No rendered images (run experiments/run\\_matrix.py).}\n")
     return {"GalleryImages": (str(len(shown)), False)}

@@ -10,6 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from analysis import figures  # noqa: E402
 from analysis import kdtree_results as kr  # noqa: E402
+from analysis import provenance  # noqa: E402
 
 MARKERS = ["o", "s", "^", "v", "D", "P", "X", "*", "h"]
 
@@ -50,6 +51,7 @@ def time_figure(ctx, df, column, ylabel, filename):
 
 def generate(ctx):
     df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
+    provenance.check_frame(ctx, df, "figures 1 and 2 (build and render time)")
     time_figure(ctx, df, "T_B", "build time $T_B$ (s, log scale)",
                 "fig1_build.pdf")
     time_figure(ctx, df, "T_R", "render time $T_R$ (s, log scale)",

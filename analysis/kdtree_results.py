@@ -5,6 +5,8 @@ variant), the newest successful record of each.
 
 import pandas as pd
 
+from analysis import provenance
+
 KDTREE_FILE = "kdtree.jsonl"
 
 VARIANTS = ["median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
@@ -29,40 +31,53 @@ TITLES["sah-packet-binned"] = "SAH per packet of 4, binned"
 # The report's three groups of three columns.
 GROUPS = [VARIANTS[0:3], VARIANTS[3:6], VARIANTS[6:9]]
 
-# Column -> where it is in a kdrt record (first match wins). kdrt nests the
-# tree statistics under "tree" or "stats"; accept both, and flat.
+# Column -> where kdrt writes it in its record (//cc/tools:kdrt: flat
+# top-level names, the tree statistics of cc/kdtree/stats.cc StatsToJson
+# among them; "a.b" is member b of object a). Timing columns are the medians
+# of their timed rounds; the *_runs columns hold every round.
 FIELDS = {
-    "T_B": ["T_B"], "T_R": ["T_R"], "perf": ["perf_krays", "perf"],
+    "T_B": "T_B", "T_R": "T_R", "perf": "perf_krays",
+    "T_B_runs": "T_B_runs", "T_R_runs": "T_R_runs",
+    "T_B_warmup": "T_B_warmup", "T_R_warmup": "T_R_warmup",
     # The renderer's fastest mode (kdrt --fast_render; matrix
     # fast_render_variants): packets of 2x2 pixels, shadow rays leaving their
-    # origin triangle untested; the same image.
-    "T_R_fast": ["fast_render.T_R"],
-    "all_rays_per_s": ["all_rays_per_s"],
-    "N_IT": ["N_IT"], "N_TR": ["N_TR"],
-    "N_I": ["N_I"], "N_L": ["N_L"], "N_TP": ["N_TP"], "N_AP": ["N_AP"],
-    "N_empty": ["N_empty"],
-    "mem": ["mem_report_mb", "mem"], "tree_bytes": ["tree_bytes"],
-    "R_E": ["R_E"], "D_max": ["D_max"], "D_avg": ["D_avg"],
-    "N_CL": ["N_CL"], "N_PR": ["N_PR"], "N_lost_planar": ["N_lost_planar"],
-    "sah_cost": ["sah_cost"],
-    "P_hit": ["P_hit"], "P_miss": ["P_miss"], "S_hit": ["S_hit"],
-    "S_miss": ["S_miss"], "n_tri": ["n_tri"],
-    "embree_T_B": ["embree.T_B"], "embree_T_R": ["embree.T_R"],
-    "embree_perf": ["embree.perf_krays", "embree.perf"],
-    "embree_disagree": ["embree.disagreements", "embree.disagree"],
-    "embree_grazing": ["embree.disagreements_grazing"],
-    "embree_other": ["embree.disagreements_other"],
-    "embree_at_origin": ["embree.disagreements_at_origin"],
-    "embree_t_guard": ["embree.disagreements_t_guard"],
+    # origin triangle untested; the same image. Its ratio to Embree is paired
+    # per round (Embree T_R / fast T_R).
+    "T_R_fast": "fast_render.T_R", "T_R_fast_runs": "fast_render.T_R_runs",
+    "fast_ratio": "fast_render.paired_ratio",
+    "fast_ratio_runs": "fast_render.paired_ratio_runs",
+    "all_rays_per_s": "all_rays_per_s",
+    "N_IT": "N_IT", "N_TR": "N_TR",
+    "N_I": "N_I", "N_L": "N_L", "N_TP": "N_TP", "N_AP": "N_AP",
+    "N_empty": "N_empty",
+    "mem": "mem_report_mb", "tree_bytes": "tree_bytes",
+    "R_E": "R_E", "D_max": "D_max", "D_avg": "D_avg",
+    "N_CL": "N_CL", "N_PR": "N_PR", "N_lost_planar": "N_lost_planar",
+    "sah_cost": "sah_cost",
+    "P_hit": "P_hit", "P_miss": "P_miss", "S_hit": "S_hit",
+    "S_miss": "S_miss", "n_tri": "n_tri",
+    # Embree on the same rays, in the same process, its timed rounds
+    # alternating with the kd-tree's: paired_ratio is the median over the
+    # rounds of Embree T_R / kd-tree T_R (perf kd over Embree).
+    "embree_T_B": "embree.T_B", "embree_T_R": "embree.T_R",
+    "embree_T_B_runs": "embree.T_B_runs", "embree_T_R_runs": "embree.T_R_runs",
+    "embree_ratio": "embree.paired_ratio",
+    "embree_ratio_runs": "embree.paired_ratio_runs",
+    "embree_perf": "embree.perf_krays",
+    "embree_disagree": "embree.disagreements",
+    "embree_grazing": "embree.disagreements_grazing",
+    "embree_other": "embree.disagreements_other",
+    "embree_at_origin": "embree.disagreements_at_origin",
+    "embree_t_guard": "embree.disagreements_t_guard",
     # Judged in exact arithmetic (cc/render/compare.h): the kd-tree is the
     # reference tracer of kdrt's comparison, Embree the other.
-    "kd_wrong": ["disagreements.reference_wrong"],
-    "embree_wrong": ["disagreements.other_wrong"],
-    "embree_rays_per_s": ["embree.all_rays_per_s"],
-    "cpu": ["cpu", "machine.cpu", "cpu_model"],
-    "repeats": ["repeats"], "repeat_budget_s": ["repeat_budget_s"],
-    "concurrent_jobs": ["concurrent_jobs"],
-    "T_B_runs": ["T_B_runs"], "T_R_runs": ["T_R_runs"],
+    "kd_wrong": "disagreements.reference_wrong",
+    "embree_wrong": "disagreements.other_wrong",
+    "embree_rays_per_s": "embree.all_rays_per_s",
+    "threads": "threads", "repeats": "repeats",
+    "repeat_budget_s": "repeat_budget_s",
+    # Added by experiments/run_matrix.py.
+    "job": "job", "concurrent_jobs": "concurrent_jobs",
 }
 
 
@@ -82,52 +97,41 @@ def _get(rec, path):
 
 
 def field(rec, name):
-    for path in FIELDS[name]:
-        for prefix in ("", "tree.", "stats."):
-            value = _get(rec, prefix + path)
-            if value is not None and not isinstance(value, dict):
-                return value
-    return None
+    value = _get(rec, FIELDS[name])
+    return None if isinstance(value, dict) else value
+
+
+def latest(records):
+    """{(scene, preset): the newest successful record} (results files are
+    append-only: a rerun appends)."""
+    out = {}
+    for rec in records:
+        if rec.get("ok") and rec.get("scene") and rec.get("preset"):
+            out[(rec["scene"], rec["preset"])] = rec
+    return out
 
 
 def frame(records, manifest):
     """DataFrame indexed by (scene, variant) with every FIELDS column plus
-    number (manifest order) and report_scene."""
+    order (manifest order), report_scene and provenance (the record's
+    provenance object, analysis/provenance.py; None when unknown)."""
     order = {s["name"]: i for i, s in enumerate(manifest)}
     report = {s["name"]: s.get("report_scene") for s in manifest}
-    latest = {}
-    for rec in records:
-        if rec.get("ok") and rec.get("scene") and rec.get("preset"):
-            latest[(rec["scene"], rec["preset"])] = rec
     rows = []
-    for (scene, variant), rec in latest.items():
+    for (scene, variant), rec in latest(records).items():
         row = {"scene": scene, "variant": variant,
                "order": order.get(scene, len(order)),
-               "report_scene": report.get(scene)}
+               "report_scene": report.get(scene),
+               "provenance": provenance.of(rec)}
         for name in FIELDS:
             row[name] = field(rec, name)
         rows.append(row)
     if not rows:
         return pd.DataFrame(columns=["scene", "variant", "order",
-                                     "report_scene"] + list(FIELDS))
+                                     "report_scene", "provenance"]
+                            + list(FIELDS))
     df = pd.DataFrame(rows).sort_values(["order", "scene"])
     return df.set_index(["scene", "variant"])
-
-
-class MixedCpuError(ValueError):
-    """Timings measured on different CPUs would share one table."""
-
-
-def check_one_cpu(df, allow_mixed=False):
-    """Raises MixedCpuError when the runs come from more than one CPU model
-    (a cluster with mixed nodes), unless allowed; returns the CPU models."""
-    cpus = sorted({c for c in df["cpu"].tolist() if c}) if not df.empty else []
-    if len(cpus) > 1 and not allow_mixed:
-        raise MixedCpuError(
-            "timings from %d different CPUs (%s) would be mixed in one table; "
-            "rerun on one kind of node, or pass --allow_mixed_cpus"
-            % (len(cpus), "; ".join(cpus)))
-    return cpus
 
 
 def scenes_in_order(df):

@@ -8,6 +8,7 @@ of the report's Table 1 for our scenes).
 
 from analysis import kdtree_results as kr
 from analysis import latex
+from analysis import provenance
 
 SETS = [
     # (first table number, columns, caption stem)
@@ -71,7 +72,8 @@ def render(df, scenes, variants, columns, caption, label):
 
 def generate(ctx):
     df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
-    cpus = kr.check_one_cpu(df, getattr(ctx, "allow_mixed_cpus", False))
+    cpus = provenance.cpus(provenance.check_frame(
+        ctx, df, "the kd-tree tables (%s)" % kr.KDTREE_FILE))
     scenes = kr.scenes_in_order(df)
     for first, columns, stem in SETS:
         for k, variants in enumerate(kr.GROUPS):

@@ -9,6 +9,11 @@ rebuilt from scratch on every run (in a temporary directory, swapped in only
 when every generator succeeded), so the report never picks up a stale table
 from an earlier run, and a failing generator leaves no half-made directory.
 
+Records of different provenance (code, compilation mode, CPU) never share a
+table, and timings of a binary not built for timing are never shown
+(analysis/provenance.py), unless --allow_mixed_provenance, --allow_mixed_cpus
+or --allow_unoptimized_timings says otherwise.
+
 To add Table N or a figure: write analysis/<name>.py with generate(ctx),
 append it to GENERATORS, \\input its file in report/main.tex.
 """
@@ -35,6 +40,7 @@ from analysis import kdtree_tables  # noqa: E402
 from analysis import latex  # noqa: E402
 from analysis import machine  # noqa: E402
 from analysis import planar  # noqa: E402
+from analysis import provenance_macros  # noqa: E402
 from analysis import robustness  # noqa: E402
 from analysis import row18  # noqa: E402
 from analysis import seed_tables  # noqa: E402
@@ -43,6 +49,7 @@ from analysis import table1  # noqa: E402
 # Order matters only for readability of macros.tex.
 GENERATORS = [
     machine,
+    provenance_macros,
     table1,
     seed_tables,
     row18,
@@ -62,8 +69,10 @@ MARKER = ".generated-by-analysis"
 
 
 def make_all(results_dir, manifest_path, out_dir, generators=None,
-             allow_mixed_cpus=False):
-    """Runs every generator into a fresh out_dir; returns the files written."""
+             allow_mixed_cpus=False, allow_mixed_provenance=False,
+             allow_unoptimized_timings=False):
+    """Runs every generator into a fresh out_dir; returns the files written.
+    The allow_* flags override analysis/provenance.py's refusals."""
     generators = GENERATORS if generators is None else generators
     out_dir = os.path.abspath(out_dir)
     if os.path.isdir(out_dir) and os.listdir(out_dir) and not os.path.exists(
@@ -75,8 +84,11 @@ def make_all(results_dir, manifest_path, out_dir, generators=None,
         shutil.rmtree(staging)
     os.makedirs(staging)
     try:
-        ctx = context.Context(results_dir, manifest_path, staging)
-        ctx.allow_mixed_cpus = allow_mixed_cpus
+        ctx = context.Context(
+            results_dir, manifest_path, staging,
+            allow_mixed_provenance=allow_mixed_provenance,
+            allow_mixed_cpus=allow_mixed_cpus,
+            allow_unoptimized_timings=allow_unoptimized_timings)
         macros = {}
         for gen in generators:
             for name, value in gen.generate(ctx).items():
@@ -106,10 +118,19 @@ def main(argv=None):
     parser.add_argument("--out", default="report/generated")
     parser.add_argument("--allow_mixed_cpus", action="store_true",
                         help="put timings from different CPUs in one table")
+    parser.add_argument("--allow_mixed_provenance", action="store_true",
+                        help="put records of different code (source tree, "
+                        "compilation mode) in one table")
+    parser.add_argument("--allow_unoptimized_timings", action="store_true",
+                        help="show timings from binaries not built for "
+                        "timing (provenance timing_build false)")
     args = parser.parse_args(argv)
     try:
-        written = make_all(args.results, args.manifest, args.out,
-                           allow_mixed_cpus=args.allow_mixed_cpus)
+        written = make_all(
+            args.results, args.manifest, args.out,
+            allow_mixed_cpus=args.allow_mixed_cpus,
+            allow_mixed_provenance=args.allow_mixed_provenance,
+            allow_unoptimized_timings=args.allow_unoptimized_timings)
     except (RuntimeError, ValueError, OSError) as e:
         print("make_all: error: %s" % e, file=sys.stderr)
         return 1

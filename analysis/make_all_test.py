@@ -1,3 +1,5 @@
+import contextlib
+import io
 import os
 import re
 import tempfile
@@ -5,6 +7,7 @@ import unittest
 
 from analysis import accuracy
 from analysis import make_all
+from analysis import provenance_macros
 from analysis import robustness
 from analysis import row18
 from analysis import seed_tables
@@ -21,10 +24,11 @@ EXPECTED_MACROS = [
 ] + row18.MACROS + [
     "KdCpus", "NumKdScenes", "NumKdRuns", "TimingRepeats", "TimingBudget",
     "TimingMinRuns", "TimingJobs", "ClaimsTotal", "ClaimsConfirmed",
-    "ClaimsRefuted", "ClaimsMixed", "PlanarScene", "PlanarWorstVariant",
+    "ClaimsRefuted", "ClaimsMixed", "ClaimsWithinNoise", "PlanarScene", "PlanarWorstVariant",
     "PlanarWorstLost", "PlanarWorstPixels", "PlanarDefaultLost",
     "PlanarTriangles", "EmbreeScenes", "EmbreeRatioMedian", "EmbreeRatioMin",
-    "EmbreeRatioMax", "EmbreePacketScenes", "EmbreePacketRatioMedian",
+    "EmbreeRatioMax", "EmbreeBigScenes", "EmbreeBigAtLeastSeventy",
+    "EmbreePacketScenes", "EmbreePacketRatioMedian",
     "EmbreePacketRatioMin", "EmbreePacketRatioMax", "EmbreePacketBigScenes",
     "EmbreePacketBigAtLeastSeventy", "EmbreeFastScenes", "EmbreeFastRatioMedian",
     "EmbreeFastRatioMin", "EmbreeFastRatioMax", "EmbreeFastBigScenes",
@@ -33,7 +37,8 @@ EXPECTED_MACROS = [
     "BinnedScenes", "BinnedBuildOverEmbreeMedian", "BinnedPerfOverEmbreeMedian",
     "BinnedBuildOverReportMedian", "BinnedPerfOverReportMedian", "BinnedBeatsReportBoth",
     "BinnedComparedWithReport", "GalleryImages"
-] + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS
+] + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
+    provenance_macros.MACROS
 
 
 class MakeAllTest(unittest.TestCase):
@@ -65,6 +70,61 @@ class MakeAllTest(unittest.TestCase):
         self.assertIn("\\newcommand{\\MachineCPU}{Fixture CPU @ 1.00GHz}", text)
         self.assertIn("\\newcommand{\\GitCommit}{0123456789ab}", text)
         self.assertIn("\\newcommand{\\MachineMemory}{16.0\\,GiB}", text)
+
+    def run_main(self, *flags):
+        """make_all.main on the fixture; (exit code, stderr)."""
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), \
+                contextlib.redirect_stdout(io.StringIO()):
+            code = make_all.main(["--results", self.results, "--manifest",
+                                  self.manifest, "--out", self.out] + list(flags))
+        return code, err.getvalue()
+
+    def kdtree_runs(self, **prov):
+        """kdrt records of bunny (the fixture's provenance) and armadillo
+        (its provenance changed by prov) for every variant."""
+        testdata.write_kdtree(self.results, [
+            testdata.kdrt_record(scene, v, provenance=testdata.provenance(
+                **(prov if scene == "armadillo" else {})))
+            for scene in ("bunny", "armadillo") for v in testdata.NINE])
+
+    def test_states_the_provenance_of_the_runs(self):
+        self.kdtree_runs()
+        self.assertEqual(self.run_main(), (0, ""))
+        text = self.read("macros.tex")
+        self.assertIn("\\newcommand{\\ProvCommit}{0123456789ab}", text)
+        self.assertIn("\\newcommand{\\ProvRecords}{18}", text)
+        self.assertIn("embree_ratio.pdf", os.listdir(self.out))
+
+    def test_two_provenances_stop_with_the_message(self):
+        self.kdtree_runs(dirty=True, source_tree="c" * 40)
+        code, err = self.run_main()
+        self.assertEqual(code, 1)
+        self.assertIn("would mix records of 2 provenances: 0123456789ab, opt "
+                      "(9 records, e.g. bunny/median-16-2); 0123456789ab "
+                      "+dirty cccccccccccc, opt (9 records", err)
+        self.assertIn("--allow_mixed_provenance", err)
+        self.assertFalse(os.path.exists(self.out))
+        self.assertEqual(self.run_main("--allow_mixed_provenance"), (0, ""))
+        self.assertIn("\\newcommand{\\ProvSourceTree}{89abcdef0123; cccccccccccc}",
+                      self.read("macros.tex"))
+
+    def test_unoptimised_timings_stop_with_the_message(self):
+        self.kdtree_runs(compilation_mode="fastbuild", optimized=False,
+                         timing_build=False)
+        code, err = self.run_main("--allow_mixed_provenance")
+        self.assertEqual(code, 1)
+        self.assertIn("timings of armadillo/median-16-2 from a binary not "
+                      "built for timing", err)
+        self.assertEqual(self.run_main("--allow_mixed_provenance",
+                                       "--allow_unoptimized_timings"), (0, ""))
+
+    def test_two_cpus_stop_unless_allowed(self):
+        self.kdtree_runs(cpu_model="Another CPU")
+        code, err = self.run_main()
+        self.assertEqual(code, 1)
+        self.assertIn("--allow_mixed_cpus", err)
+        self.assertEqual(self.run_main("--allow_mixed_cpus"), (0, ""))
 
     def test_main_tex_uses_only_generated_macros(self):
         """Every macro main.tex uses from macros.tex is generated."""

@@ -19,6 +19,7 @@ import numpy as np  # noqa: E402
 
 from analysis import kdtree_results as kr  # noqa: E402
 from analysis import latex  # noqa: E402
+from analysis import provenance  # noqa: E402
 
 
 def pixel_diff(seed_png, default_png):
@@ -41,6 +42,10 @@ def generate(ctx):
     for r in ctx.results(PLANAR_FILE):
         if r.get("ok"):
             recs[(r["preset"], r["mode"])] = r
+    # Counts and hits only, no timings: the code must be one, the build may
+    # be any.
+    provenance.check(ctx, recs.values(), "the planar study (%s)" % PLANAR_FILE,
+                     timings=False)
     names = ["PlanarScene", "PlanarWorstVariant", "PlanarWorstLost",
              "PlanarWorstPixels", "PlanarDefaultLost", "PlanarTriangles"]
     if not recs:
