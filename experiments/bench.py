@@ -17,7 +17,15 @@ Embree's disagreements.
 Numbers: T_B is the median of --repeats builds, and also the fastest, since
 on a shared or virtual machine the slow runs carry other load; Mtri/s =
 triangles / T_B. Render: kd/Embree = Embree's T_R / the kd-tree's T_R, medians
-of interleaved rounds on the same rays (render_bench.cc).
+of interleaved rounds on the same rays (render_bench.cc). Both benches time
+alone under the machine-wide timing lock, after untimed warm-ups.
+
+Provenance: every record carries the "provenance" of the binary that made it
+(cc/base/provenance.h). Each summary states it (commit, dirty, compilation
+mode, CPU) and refuses to summarise records of different source trees, or
+timings from a binary not built for timing (bazel -c opt), unless
+--allow_mixed_provenance is given. The benches are run from the repository
+root, so their records carry this checkout's provenance.
 """
 import argparse
 import json
@@ -47,8 +55,10 @@ def scenes_from_index(index_path, min_tris, only=""):
 
 
 def run(cmd):
+    # From the repository root: the benches take their provenance from the
+    # current directory (the checkout that built them).
     print("+", " ".join(cmd), file=sys.stderr, flush=True)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=ROOT)
 
 
 def read(path):
@@ -56,6 +66,96 @@ def read(path):
         return []
     with open(path) as f:
         return [json.loads(line) for line in f if line.strip()]
+
+
+class ProvenanceError(ValueError):
+    """Records of different provenance, or not built for timing, would be
+    summarised together."""
+
+
+def provenance_of(record):
+    """The record's provenance object, or None (a record from before it)."""
+    prov = record.get("provenance")
+    return prov if isinstance(prov, dict) else None
+
+
+def code_key(prov):
+    """What must be equal for two records to come from one code: the source
+    tree (without one, the commit and whether it was dirty); None when the
+    provenance is unknown."""
+    if prov is None:
+        return None
+    if prov.get("source_tree"):
+        return ("tree", prov["source_tree"])
+    return ("commit", prov.get("commit"), bool(prov.get("dirty")))
+
+
+def describe(prov):
+    """commit[:12], dirty, compilation mode, CPU."""
+    if prov is None:
+        return "unknown provenance (records without \"provenance\")"
+    return "commit %s%s, %s build, %s" % (
+        (prov.get("commit") or "unknown")[:12],
+        " (dirty, source tree %s)" % (prov.get("source_tree") or "unknown")[:12]
+        if prov.get("dirty") else "",
+        prov.get("compilation_mode") or "unknown",
+        prov.get("cpu_model") or "unknown CPU")
+
+
+def _label(record):
+    return "/".join(str(record[k]) for k in ("scene", "preset", "threads") if k in record)
+
+
+def check_provenance(records, what, allow_mixed=False):
+    """The distinct provenances of the records, [(provenance, count)] in order
+    first seen (distinct code or CPU). Raises ProvenanceError when they come
+    from more than one source tree, or when a timing comes from a binary not
+    built for timing (provenance timing_build false; a record before provenance
+    with "optimized": false), unless allow_mixed."""
+    by_code, by_prov = {}, {}
+    for r in records:
+        prov = provenance_of(r)
+        by_code.setdefault(code_key(prov), []).append(r)
+        key = (code_key(prov), prov.get("compilation_mode") if prov else None,
+               prov.get("cpu_model") if prov else None)
+        by_prov.setdefault(key, [prov, 0])[1] += 1
+    if not allow_mixed:
+        if len(by_code) > 1:
+            raise ProvenanceError(
+                "%s: records of %d source trees: %s. Summarise one run (another --out), or "
+                "pass --allow_mixed_provenance" % (what, len(by_code), "; ".join(
+                    "%s (%d records, e.g. %s)" % (describe(provenance_of(rs[0])), len(rs),
+                                                 _label(rs[0]))
+                    for rs in by_code.values())))
+        for r in records:
+            prov = provenance_of(r)
+            slow = (not prov.get("timing_build")) if prov else r.get("optimized") is False
+            if slow:
+                raise ProvenanceError(
+                    "%s: %s was timed with a binary not built for timing (%s%s); rebuild with "
+                    "bazel build --config=opt and rerun, or pass --allow_mixed_provenance" % (
+                        what, _label(r), describe(prov),
+                        ", optimized %s, ndebug %s" % (json.dumps(prov.get("optimized")),
+                                                      json.dumps(prov.get("ndebug")))
+                        if prov else ", optimized false"))
+    return [tuple(v) for v in by_prov.values()]
+
+
+def provenance_line(provenances):
+    """The sentence that states where the numbers come from."""
+    if not provenances:
+        return "Provenance: no records."
+    if len(provenances) == 1:
+        return "Provenance: %s." % describe(provenances[0][0])
+    return "Provenance, %d of them: %s." % (len(provenances), "; ".join(
+        "%s (%d records)" % (describe(p), n) for p, n in provenances))
+
+
+def summarise(records, summary, what, allow_mixed=False):
+    """The provenance line, then the summary; ProvenanceError as
+    check_provenance."""
+    provenances = check_provenance(records, what, allow_mixed)
+    return provenance_line(provenances) + "\n\n" + summary(records)
 
 
 def build_summary(records):
@@ -225,7 +325,11 @@ def main(argv=None):
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")
     p.add_argument("--summary_only", action="store_true")
+    p.add_argument("--allow_mixed_provenance", action="store_true",
+                   help="summarise records of different source trees, or timed with a "
+                        "binary not built for timing (each is stated)")
     a = p.parse_args(argv)
+    a.repo, a.out = os.path.abspath(a.repo), os.path.abspath(a.out)
     index = os.path.join(a.repo, "data", "cache", "scenes", "index.json")
     cache_dir = os.path.join(a.repo, "data", "cache", "soups")
     os.makedirs(a.out, exist_ok=True)
@@ -244,10 +348,16 @@ def main(argv=None):
                      "--threads", "1,2", "--repeats", str(a.repeats),
                      "--variants", a.render_variants,
                      "--out", render_out])
+    try:
+        build = summarise(read(build_out), build_summary, build_out, a.allow_mixed_provenance)
+        render = summarise(read(render_out), render_summary, render_out,
+                           a.allow_mixed_provenance)
+    except ProvenanceError as e:
+        sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")
-    print(build_summary(read(build_out)))
+    print(build)
     print("\n## Render (render_bench)\n")
-    print(render_summary(read(render_out)))
+    print(render)
 
 
 if __name__ == "__main__":

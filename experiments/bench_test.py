@@ -1,4 +1,7 @@
-"""Tests of experiments/bench.py: scene selection and the summaries."""
+"""Tests of experiments/bench.py: scene selection, the summaries and the
+provenance they state and check."""
+import contextlib
+import io
 import json
 import os
 import sys
@@ -9,9 +12,20 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench  # noqa: E402
 
 
-def build_record(threads, runs, n=2000000, warmup=None):
+def provenance(tree="a" * 40, commit="c" * 40, dirty=False, mode="opt", cpu="Test CPU @ 2GHz"):
+    # The shape of cc/base/provenance.cc's Provenance::ToJson().
+    timing = mode == "opt"
+    return {"commit": commit, "dirty": dirty, "source_tree": tree, "compilation_mode": mode,
+            "optimized": timing, "ndebug": timing, "avx2": True, "avx512f": False, "fma": True,
+            "timing_build": timing, "compiler": "12.2.0", "cpu_model": cpu, "cores": 2,
+            "timing_lock": "/tmp/kdtree-timing.lock", "timed_beside": 0,
+            "timestamp_utc": "2024-01-01T00:00:00Z"}
+
+
+def build_record(threads, runs, n=2000000, warmup=None, prov=None):
     r = {"scene": "big", "n_tri": n, "preset": "binning-32", "threads": threads,
-         "T_B": sorted(runs)[len(runs) // 2], "T_B_runs": runs}
+         "T_B": sorted(runs)[len(runs) // 2], "T_B_runs": runs,
+         "provenance": prov or provenance()}
     if warmup is not None:
         r["T_B_warmup_runs"] = warmup
     return r
@@ -44,6 +58,7 @@ class BenchTest(unittest.TestCase):
     def test_render_summary_gives_ratio_to_embree(self):
         def rec(threads, kd, embree):
             return {"scene": "s", "n_tri": 100000, "preset": "sah-packet", "threads": threads,
+                    "provenance": provenance(),
                     "tracers": {"kd": {"T_R_median": kd}, "embree": {"T_R_median": embree}},
                     "validation": {"brute_force_mismatches": 0, "brute_force_checked": 301,
                                    "embree_disagreements": {"total": 3}}}
@@ -65,6 +80,73 @@ class BenchTest(unittest.TestCase):
         self.assertIn("Paired kd/Embree over 1 rows: median 0.55", text)
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
+
+    def test_summary_states_the_provenance(self):
+        text = bench.summarise([build_record(1, [1.0]), build_record(2, [0.5])],
+                               bench.build_summary, "build.jsonl")
+        self.assertTrue(text.startswith("Provenance: commit cccccccccccc, opt build, "
+                                        "Test CPU @ 2GHz.\n\n| scene |"), text)
+        dirty = provenance(dirty=True, tree="0123456789abcdef" * 2)
+        text = bench.summarise([build_record(1, [1.0], prov=dirty)], bench.build_summary, "b")
+        self.assertIn("commit cccccccccccc (dirty, source tree 0123456789ab), opt build", text)
+
+    def test_different_source_trees_are_refused_unless_allowed(self):
+        records = [build_record(1, [1.0]), build_record(2, [0.5], prov=provenance(tree="b" * 40,
+                                                                                commit="d" * 40))]
+        with self.assertRaises(bench.ProvenanceError) as e:
+            bench.summarise(records, bench.build_summary, "build.jsonl")
+        message = str(e.exception)
+        self.assertIn("build.jsonl: records of 2 source trees", message)
+        self.assertIn("commit cccccccccccc", message)
+        self.assertIn("commit dddddddddddd", message)
+        self.assertIn("--allow_mixed_provenance", message)
+        text = bench.summarise(records, bench.build_summary, "build.jsonl", allow_mixed=True)
+        self.assertIn("Provenance, 2 of them: commit cccccccccccc, opt build, Test CPU @ 2GHz "
+                      "(1 records); commit dddddddddddd", text)
+        # Another commit of the same source tree (an edit elsewhere) is one code.
+        same = [build_record(1, [1.0]), build_record(2, [0.5], prov=provenance(commit="e" * 40))]
+        bench.summarise(same, bench.build_summary, "build.jsonl")
+        # A record from before provenance is of another, unknown, code.
+        old = build_record(2, [0.5])
+        del old["provenance"]
+        with self.assertRaises(bench.ProvenanceError):
+            bench.summarise([build_record(1, [1.0]), old], bench.build_summary, "b")
+
+    def test_timings_not_built_for_timing_are_refused_unless_allowed(self):
+        records = [build_record(1, [1.0], prov=provenance(mode="fastbuild"))]
+        with self.assertRaises(bench.ProvenanceError) as e:
+            bench.summarise(records, bench.build_summary, "build.jsonl")
+        self.assertIn("big/binning-32/1 was timed with a binary not built for timing "
+                      "(commit cccccccccccc, fastbuild build", str(e.exception))
+        self.assertIn("--allow_mixed_provenance", str(e.exception))
+        text = bench.summarise(records, bench.build_summary, "b", allow_mixed=True)
+        self.assertIn("Provenance: commit cccccccccccc, fastbuild build", text)
+        # A record from before provenance that says it was not optimised.
+        old = build_record(1, [1.0])
+        del old["provenance"]
+        old["optimized"] = False
+        with self.assertRaises(bench.ProvenanceError):
+            bench.summarise([old], bench.build_summary, "b")
+
+    def test_main_refuses_mixed_records_and_states_one_provenance(self):
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "build.jsonl"), "w") as f:
+                for r in (build_record(1, [1.0]), build_record(2, [0.5])):
+                    f.write(json.dumps(r) + "\n")
+            out = io.StringIO()
+            with contextlib.redirect_stdout(out):
+                bench.main(["--out", d, "--summary_only"])
+            self.assertIn("## Build (build_bench)\n\nProvenance: commit cccccccccccc",
+                          out.getvalue())
+            self.assertIn("## Render (render_bench)\n\nProvenance: no records.",
+                          out.getvalue())
+            with open(os.path.join(d, "build.jsonl"), "a") as f:
+                f.write(json.dumps(build_record(1, [1.0], prov=provenance(tree="b" * 40))) + "\n")
+            with self.assertRaises(SystemExit) as e, contextlib.redirect_stdout(io.StringIO()):
+                bench.main(["--out", d, "--summary_only"])
+            self.assertIn("--allow_mixed_provenance", str(e.exception.code))
+            with contextlib.redirect_stdout(io.StringIO()):
+                bench.main(["--out", d, "--summary_only", "--allow_mixed_provenance"])
 
 
 if __name__ == "__main__":

@@ -28,6 +28,17 @@
 // process ran up to 34 % apart, so compare paired ratios over several scenes.
 // One JSON line per (scene, threads) is appended to --out.
 //
+// The timing method is kdrt's (issue 22): before the rounds, every tracer
+// renders --warmup times untimed (recorded apart as T_R_warmup_runs); the
+// rounds of a thread count hold the machine-wide TimingLock
+// (cc/base/timing_lock.h), so no other timed step of this project runs beside
+// them, while the validation, Embree's build and disagreement count and the
+// warm-ups run outside it. Every record carries "provenance"
+// (cc/base/provenance.h: commit, dirty, source tree, compilation mode, CPU,
+// the lock) of the workspace ($BUILD_WORKSPACE_DIRECTORY, else the current
+// directory) and "timing" (method, rounds, warm-ups, seconds spent waiting for
+// the lock). The record is written with nlohmann-json.
+//
 // Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
 // layout: vertices read by triangle index, the traversal before the layout),
 // "kd_mailbox" (leaf layout and mailboxing, traversal.h), "kd_packet" (kd's
@@ -52,11 +63,13 @@
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/status/statusor.h"
-#include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "absl/strings/numbers.h"
-#include "absl/strings/str_join.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/provenance.h"
+#include "cc/base/timing_lock.h"
+#include "cc/bench/bench_record.h"
+#include "cc/tools/paths.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/brute_force.h"
@@ -72,13 +85,18 @@
 #include "cc/render/view.h"
 
 ABSL_FLAG(std::string, scenes, "bunny", "Comma-separated manifest scenes (fetched).");
-ABSL_FLAG(std::string, repo, ".", "Repository root (manifest, scene index).");
+ABSL_FLAG(std::string, repo, "",
+          "Repository root (manifest, scene index); '' = the workspace ($BUILD_WORKSPACE_DIRECTORY "
+          "under bazel run, else the current directory).");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups",
           "Triangle-soup cache, relative to --repo unless absolute ('' = none).");
 ABSL_FLAG(std::string, preset, "clipping-pruning", "kd-tree configuration preset.");
 ABSL_FLAG(std::string, threads, "1,2", "Comma-separated thread counts.");
 ABSL_FLAG(int, tile, 16, "Tile side for threads > 1 (renderer.h; 0 = whole rows).");
 ABSL_FLAG(int, repeats, 5, "Timed rounds per thread count (each renders every tracer once).");
+ABSL_FLAG(int, warmup, 1,
+          "Untimed renders per tracer and thread count before the timed rounds (recorded as "
+          "T_R_warmup_runs).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet,kd_origin",
           "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet, kd_origin, "
@@ -113,6 +131,7 @@ struct Entry {
   bool packets;      // RenderOptions::packets
   bool skip_origin;  // RenderOptions::skip_origin
   std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
+  std::vector<double> warmup;                    // untimed T_R before the rounds
   uint64_t rays = 0;
 };
 
@@ -153,8 +172,18 @@ uint64_t BruteForceMismatches(const std::vector<RayRecord>& recs, const BruteFor
   return bad;
 }
 
-absl::Status RunScene(const std::string& scene, FILE* out) {
-  const std::string repo = absl::GetFlag(FLAGS_repo);
+// The run's shared context: where its numbers come from, and the lock its
+// timed rounds hold.
+struct Context {
+  TimingLock* lock;
+  bench::Json provenance;
+};
+
+absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
+  using bench::Json;
+  const std::string repo =
+      absl::GetFlag(FLAGS_repo).empty() ? Workspace()
+                                        : FromInvocationDir(absl::GetFlag(FLAGS_repo));
   absl::StatusOr<SceneRef> ref = ResolveScene(repo, scene);
   if (!ref.ok()) return ref.status();
   const std::string cache = absl::GetFlag(FLAGS_cache_dir);
@@ -187,7 +216,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   std::vector<EnvTree> env_trees;
   for (const std::string& path : std::vector<std::string>(
            absl::StrSplit(absl::GetFlag(FLAGS_envs), ',', absl::SkipEmpty()))) {
-    absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, *config);
+    absl::StatusOr<EnvResult> env = LoadEnvironmentFile(FromInvocationDir(path), *config);
     if (!env.ok()) return env.status();
     absl::StatusOr<KdTree> t = BuildKdTree(*soup, env->config);
     if (!t.ok()) return t.status();
@@ -225,10 +254,10 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
   const RenderResult recorded = Render(*soup, kd, view, rec_opt);
-  std::string variant_json;
+  Json variant_json = Json::object();
   for (const Entry& e : proto) {
     const uint64_t bad = ExactMismatches(recorded.rays, *e.tracer);
-    absl::StrAppend(&variant_json, variant_json.empty() ? "" : ", ", JsonQuote(e.name), ": ", bad);
+    variant_json[e.name] = bad;
     if (bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd on ", bad, " rays"));
     if (e.packets) {
       // Packets: every primary hit bit for bit, the shadow count and the image
@@ -274,7 +303,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
     int threads = 0;
     if (!absl::SimpleAtoi(ts, &threads) || threads < 1) return absl::InvalidArgumentError("--threads");
     std::unique_ptr<EmbreeTracer> embree;
-    std::string disagree = "null";
+    Json disagree = nullptr;
     std::vector<Entry> entries = proto;
     if (use_embree) {
       absl::StatusOr<EmbreeQuality> q = ParseEmbreeQuality(quality_flag);
@@ -285,7 +314,7 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
       absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, eo);
       if (!e.ok()) return e.status();
       embree = *std::move(e);
-      disagree = CompareTracers(recorded.rays, *soup, kd, *embree).ToJson();
+      disagree = Json::parse(CompareTracers(recorded.rays, *soup, kd, *embree).ToJson());
       entries.emplace_back("embree", embree.get());
       if (absl::GetFlag(FLAGS_embree_packets)) entries.emplace_back("embree_packet", embree.get(), true);
     }
@@ -293,74 +322,105 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
     RenderOptions topt = ropt;
     topt.threads = threads;
     topt.tile_size = absl::GetFlag(FLAGS_tile);
+    // One render of entry e; kd-tree variants must reproduce the validated
+    // image exactly (Embree may differ on grazing rays: its disagreements are
+    // reported above).
+    const auto render = [&](const Entry& e) -> absl::StatusOr<RenderResult> {
+      RenderOptions o = topt;
+      o.packets = e.packets;
+      o.skip_origin = e.skip_origin;
+      RenderResult r = Render(*soup, *e.tracer, view, o);
+      if (e.tracer != embree.get() && r.rgb != recorded.rgb) {
+        return absl::InternalError(absl::StrCat(e.name, ": image differs"));
+      }
+      return r;
+    };
+    // Warm-ups, untimed and outside the lock.
+    const int warmup = absl::GetFlag(FLAGS_warmup);
+    for (int w = 0; w < warmup; ++w) {
+      for (Entry& e : entries) {
+        absl::StatusOr<RenderResult> r = render(e);
+        if (!r.ok()) return r.status();
+        e.warmup.push_back(r->seconds);
+      }
+    }
+    // Timed rounds, alone under the lock.
     const int repeats = absl::GetFlag(FLAGS_repeats);
+    const double waited_before = ctx.lock->waited_seconds();
+    if (absl::Status st = ctx.lock->Acquire(); !st.ok()) return st;
     for (int round = 0; round < repeats; ++round) {
       for (size_t k = 0; k < entries.size(); ++k) {
         Entry& e = entries[(k + round) % entries.size()];
-        RenderOptions o = topt;
-        o.packets = e.packets;
-        o.skip_origin = e.skip_origin;
-        const RenderResult r = Render(*soup, *e.tracer, view, o);
-        // kd-tree variants must reproduce the validated image exactly (Embree
-        // may differ on grazing rays: its disagreements are reported above).
-        if (e.tracer != embree.get() && r.rgb != recorded.rgb) {
-          return absl::InternalError(absl::StrCat(e.name, ": image differs"));
+        absl::StatusOr<RenderResult> r = render(e);
+        if (!r.ok()) {
+          ctx.lock->Release();
+          return r.status();
         }
-        e.runs.push_back(r.seconds);
-        e.primary.push_back(r.primary.seconds);
-        e.secondary.push_back(r.shadow.seconds + r.ao.seconds);
-        e.rays = r.total_rays();
+        e.runs.push_back(r->seconds);
+        e.primary.push_back(r->primary.seconds);
+        e.secondary.push_back(r->shadow.seconds + r->ao.seconds);
+        e.rays = r->total_rays();
       }
     }
-    std::string tracers;
+    ctx.lock->Release();
+    const double lock_wait_s = ctx.lock->waited_seconds() - waited_before;
+    const auto min_of = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
+    Json tracers = Json::object();
     for (const Entry& e : entries) {
-      absl::StrAppend(&tracers, tracers.empty() ? "" : ", ",
-                      absl::StrFormat("%s: {\"T_R_runs\": %s, \"T_R_median\": %s, \"T_R_min\": %s, "
-                                      "\"mrays_per_s_median\": %s, \"primary_s_median\": %s, "
-                                      "\"secondary_s_median\": %s, "
-                                      "\"first_over_this_paired\": %s}",
-                                      JsonQuote(e.name), JsonNumberArray(e.runs), JsonNumber(Median(e.runs)),
-                                      JsonNumber(*std::min_element(e.runs.begin(), e.runs.end())),
-                                      JsonNumber(e.rays / Median(e.runs) / 1e6),
-                                      JsonNumber(Median(e.primary)), JsonNumber(Median(e.secondary)),
-                                      JsonNumber(PairedRatio(entries[0].runs, e.runs))));
+      tracers[e.name] = {{"T_R_runs", e.runs},
+                         {"T_R_median", Median(e.runs)},
+                         {"T_R_min", min_of(e.runs)},
+                         {"mrays_per_s_median", e.rays / Median(e.runs) / 1e6},
+                         {"primary_s_median", Median(e.primary)},
+                         {"secondary_s_median", Median(e.secondary)},
+                         {"first_over_this_paired", PairedRatio(entries[0].runs, e.runs)},
+                         {"T_R_warmup_runs", e.warmup}};
     }
     // Ratios of each kd-tree tracer to Embree's single rays and, when timed,
     // to its packets.
     const auto ratios_to = [&](const Entry& em) {
-      std::string out;
+      Json ratios = Json::object();
       for (size_t k = 0; k < n_kd; ++k) {
         const Entry& e = entries[k];
-        absl::StrAppend(
-            &out, out.empty() ? "" : ", ",
-            absl::StrFormat("%s: {\"median\": %s, \"min\": %s, \"paired\": %s}",
-                            JsonQuote(e.name), JsonNumber(Median(em.runs) / Median(e.runs)),
-                            JsonNumber(*std::min_element(em.runs.begin(), em.runs.end()) /
-                                       *std::min_element(e.runs.begin(), e.runs.end())),
-                            JsonNumber(PairedRatio(em.runs, e.runs))));
+        ratios[e.name] = {{"median", Median(em.runs) / Median(e.runs)},
+                          {"min", min_of(em.runs) / min_of(e.runs)},
+                          {"paired", PairedRatio(em.runs, e.runs)}};
       }
-      return out;
+      return ratios;
     };
-    std::string ratios, packet_ratios;
+    Json ratios = Json::object(), packet_ratios = Json::object();
     if (use_embree) ratios = ratios_to(entries[n_kd]);
     if (entries.size() > n_kd + 1) packet_ratios = ratios_to(entries[n_kd + 1]);
-    const std::string line = absl::StrFormat(
-        "{\"bench\": \"render\", \"scene\": %s, \"n_tri\": %d, \"preset\": %s, \"threads\": %d, \"tile\": %d, "
-        "\"repeats\": %d, \"rays\": %d, \"primary\": %d, \"shadow\": %d, \"ao\": %d, "
-        "\"leaf_layout_bytes\": %d, \"tracers\": {%s}, \"ratio_kd_over_embree\": {%s}, "
-        "\"ratio_kd_over_embree_packet\": {%s}, \"embree_native_ray4\": %s, "
-        "\"validation\": {\"variants_vs_kd_mismatches\": {%s}, \"brute_force_checked\": %d, "
-        "\"brute_force_mismatches\": %d, \"embree_disagreements\": %s}}",
-        JsonQuote(scene), soup->size(), JsonQuote(absl::GetFlag(FLAGS_preset)), threads,
-        topt.tile_size, repeats,
-        recorded.total_rays(), recorded.primary.rays, recorded.shadow.rays, recorded.ao.rays,
-        LeafLayoutBytes(*tree), tracers, ratios, packet_ratios,
-        embree != nullptr && embree->native_ray4() ? "true" : "false", variant_json, checked, bf_bad, disagree);
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-    if (out != nullptr) {
-      std::fprintf(out, "%s\n", line.c_str());
-      std::fflush(out);
+    Json rec = {{"bench", "render"},
+                {"scene", scene},
+                {"n_tri", soup->size()},
+                {"preset", absl::GetFlag(FLAGS_preset)},
+                {"threads", threads},
+                {"tile", topt.tile_size},
+                {"repeats", repeats},
+                {"rays", recorded.total_rays()},
+                {"primary", recorded.primary.rays},
+                {"shadow", recorded.shadow.rays},
+                {"ao", recorded.ao.rays},
+                {"leaf_layout_bytes", LeafLayoutBytes(*tree)},
+                {"tracers", std::move(tracers)},
+                {"ratio_kd_over_embree", std::move(ratios)},
+                {"ratio_kd_over_embree_packet", std::move(packet_ratios)},
+                {"embree_native_ray4", embree != nullptr && embree->native_ray4()}};
+    rec["validation"] = {{"variants_vs_kd_mismatches", variant_json},
+                         {"brute_force_checked", checked},
+                         {"brute_force_mismatches", bf_bad},
+                         {"embree_disagreements", disagree}};
+    rec["timing"] = {{"method", "warm-up excluded; then rounds rendering every tracer once, in an "
+                                "order rotating per round, alone under the timing lock; ratios "
+                                "paired per round"},
+                     {"rounds", repeats},
+                     {"warmup", warmup},
+                     {"lock_wait_s", lock_wait_s}};
+    rec["provenance"] = ctx.provenance;
+    const std::string line = bench::Line(rec);
+    if (!bench::WriteLine(stdout, line) || !bench::WriteLine(out, line)) {
+      return absl::InternalError("cannot write the record");
     }
   }
   return absl::OkStatus();
@@ -371,8 +431,12 @@ absl::Status RunScene(const std::string& scene, FILE* out) {
 
 int main(int argc, char** argv) {
   absl::ParseCommandLine(argc, argv);
+  if (absl::GetFlag(FLAGS_repeats) < 1 || absl::GetFlag(FLAGS_warmup) < 0) {
+    std::fprintf(stderr, "render_bench: --repeats must be >= 1 and --warmup >= 0\n");
+    return 2;
+  }
   FILE* out = nullptr;
-  const std::string path = absl::GetFlag(FLAGS_out);
+  const std::string path = kdtree::FromInvocationDir(absl::GetFlag(FLAGS_out));
   if (!path.empty()) {
     out = std::fopen(path.c_str(), "a");
     if (out == nullptr) {
@@ -380,15 +444,23 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  // Where the numbers come from; the timed rounds hold `lock`.
+  kdtree::TimingLock lock;
+  kdtree::Provenance provenance = kdtree::CollectProvenance(kdtree::Workspace());
+  provenance.timing_lock = lock.path();
+  const kdtree::Context ctx{&lock, provenance.ToJson()};
   int rc = 0;
   for (const std::string& scene :
        std::vector<std::string>(absl::StrSplit(absl::GetFlag(FLAGS_scenes), ','))) {
-    const absl::Status st = kdtree::RunScene(scene, out);
+    const absl::Status st = kdtree::RunScene(scene, ctx, out);
     if (!st.ok()) {
       std::fprintf(stderr, "render_bench: %s: %s\n", scene.c_str(), std::string(st.message()).c_str());
       rc = 1;
     }
   }
-  if (out != nullptr) std::fclose(out);
+  if (out != nullptr && std::fclose(out) != 0) {
+    std::fprintf(stderr, "render_bench: cannot write %s\n", path.c_str());
+    rc = 1;
+  }
   return rc;
 }

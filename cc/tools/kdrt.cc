@@ -96,14 +96,6 @@ ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache direc
 namespace kdtree {
 namespace {
 
-std::string Workspace() {
-  const char* ws = std::getenv("BUILD_WORKSPACE_DIRECTORY");
-  return ws != nullptr && *ws != '\0' ? ws : ".";
-}
-std::string FromWorkspace(const std::string& path) {
-  if (path.empty() || path[0] == '/') return path;
-  return absl::StrCat(Workspace(), "/", path);
-}
 std::string MeshStem(const std::string& path) {
   std::string base = path.substr(path.find_last_of('/') + 1);
   if (base.size() > 3 && base.substr(base.size() - 3) == ".gz") base.resize(base.size() - 3);

@@ -1,0 +1,31 @@
+// What build_bench and render_bench share: writing one JSON record per line.
+// (Paths: cc/tools/paths.h.)
+#ifndef KDTREE_CC_BENCH_BENCH_RECORD_H_
+#define KDTREE_CC_BENCH_BENCH_RECORD_H_
+
+#include <cstdio>
+#include <string>
+
+#include "nlohmann/json.hpp"
+
+namespace kdtree {
+namespace bench {
+
+using Json = nlohmann::ordered_json;
+
+// One record as one line (invalid UTF-8 in names replaced, not thrown).
+inline std::string Line(const Json& record) {
+  return record.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+// Writes the line and a newline to `out` (when not null) and flushes; false
+// when the write failed.
+inline bool WriteLine(std::FILE* out, const std::string& line) {
+  if (out == nullptr) return true;
+  return std::fprintf(out, "%s\n", line.c_str()) >= 0 && std::fflush(out) == 0;
+}
+
+}  // namespace bench
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_BENCH_BENCH_RECORD_H_

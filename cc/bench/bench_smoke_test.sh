@@ -1,0 +1,136 @@
+#!/bin/bash
+# build_bench and render_bench end to end on a small generated scene: one
+# record per preset (build) and per thread count (render), written through
+# nlohmann-json, each with "provenance" and "timing"; the warm-ups recorded
+# apart from the timed runs; the timed steps wait for the timing lock while
+# another process holds it.
+set -euo pipefail
+BIN="$TEST_SRCDIR/$TEST_WORKSPACE/cc/bench"
+T="$TEST_TMPDIR"
+cd "$T"
+# Timed steps hold this lock (cc/base/timing_lock.h), not the machine's.
+export KDTREE_TIMING_LOCK="$T/timing.lock"
+# Not a checkout: the commit comes from here (cc/base/provenance.h).
+export KDTREE_GIT_COMMIT=0123456789abcdef0123456789abcdef01234567
+
+# A closed octahedron above a ground quad.
+mkdir -p repo/data/cache/scenes
+cat > repo/scene.obj <<'OBJ'
+v 0 1 0
+v 1 0 0
+v 0 0 1
+v -1 0 0
+v 0 0 -1
+v 0 -1 0
+v -4 -1.5 -4
+v 4 -1.5 -4
+v 4 -1.5 4
+v -4 -1.5 4
+f 1 3 2
+f 1 4 3
+f 1 5 4
+f 1 2 5
+f 6 2 3
+f 6 3 4
+f 6 4 5
+f 6 5 2
+f 7 9 8
+f 7 10 9
+OBJ
+cat > repo/data/cache/scenes/index.json <<'JSON'
+{"scenes": {"tiny": {"file": "scene.obj", "triangles": 10}}}
+JSON
+
+# Another process holds the lock for a moment: the first timed build waits.
+/usr/bin/python3 - "$KDTREE_TIMING_LOCK" <<'PY' &
+import fcntl, sys, time
+with open(sys.argv[1], "a") as f:
+    fcntl.flock(f, fcntl.LOCK_EX)
+    open(sys.argv[1] + ".held", "w").close()
+    time.sleep(1.5)
+PY
+holder=$!
+while [ ! -e "$KDTREE_TIMING_LOCK.held" ]; do sleep 0.05; done
+"$BIN/build_bench" --mesh=repo/scene.obj --name=tiny --cache_dir= \
+  --presets=binning-32,clipping-pruning --threads=1,2 --repeats=3 --warmup=2 --out=build.jsonl \
+  2> build.err
+wait "$holder"
+
+# Under `bazel run`: the scene index and the provenance come from the
+# workspace, a relative --out from where it was invoked.
+mkdir -p elsewhere
+BUILD_WORKSPACE_DIRECTORY="$T/repo" BUILD_WORKING_DIRECTORY="$T/elsewhere" \
+  "$BIN/render_bench" --scenes=tiny --cache_dir= --preset=clipping-pruning --threads=1,2 \
+  --repeats=2 --warmup=1 --variants=kd,kd_packet --embree=medium --out=render.jsonl \
+  > render.stdout
+if "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --repeats=0 > /dev/null 2> err.txt; then
+  echo "--repeats=0 accepted"; exit 1
+fi
+
+/usr/bin/python3 - <<'PY'
+import json
+def check(cond, msg):
+    if not cond:
+        raise SystemExit("FAIL: " + msg)
+def check_provenance(rec, what):
+    prov = rec.get("provenance")
+    check(isinstance(prov, dict), what + ": no provenance")
+    for k in ["commit", "dirty", "source_tree", "compilation_mode", "optimized", "ndebug",
+              "timing_build", "compiler", "cpu_model", "cores", "timing_lock", "timed_beside"]:
+        check(k in prov, "%s: provenance has no %s" % (what, k))
+    check(prov["commit"] == "0123456789abcdef0123456789abcdef01234567", what + ": commit")
+    check(prov["timing_lock"].endswith("timing.lock") and prov["timed_beside"] == 0,
+          what + ": timed alone under the lock")
+    check(prov["compilation_mode"] in ("opt", "fastbuild", "dbg"), what + ": mode")
+    check(prov["cores"] >= 1, what + ": cores")
+
+build = [json.loads(l) for l in open("build.jsonl")]
+check(len(build) == 4, "one build record per preset and thread count")
+check([(r["preset"], r["threads"]) for r in build] ==
+      [("binning-32", 1), ("binning-32", 2), ("clipping-pruning", 1), ("clipping-pruning", 2)],
+      "build records in order")
+for r in build:
+    for k in ["scene", "mesh", "n_tri", "preset", "threads", "T_B", "T_B_runs", "T_B_warmup_runs",
+              "mtri_per_s", "checked_rays", "tree_fingerprint", "stats", "timing", "provenance"]:
+        check(k in r, "build record has no " + k)
+    check("optimized" not in r, "build: the build mode is in provenance only")
+    check(r["scene"] == "tiny" and r["n_tri"] == 10, "build: scene")
+    check(len(r["T_B_runs"]) == 3 and len(r["T_B_warmup_runs"]) == 2, "build: runs apart")
+    check(sorted(r["T_B_runs"])[1] == r["T_B"], "build: the median")
+    check(len(r["tree_fingerprint"]) == 16, "build: fingerprint")
+    check(r["stats"]["N_TP"] > 0 and "N_I" in r["stats"], "build: stats")
+    check(r["timing"]["rounds"] == 3 and r["timing"]["warmup"] == 2, "build: timing")
+    check_provenance(r, "build")
+check(build[0]["timing"]["lock_wait_s"] > 0.2, "build: waited for the held lock")
+check(build[0]["tree_fingerprint"] == build[1]["tree_fingerprint"], "1 and 2 threads: one tree")
+
+render = [json.loads(l) for l in open("elsewhere/render.jsonl")]
+stdout = [json.loads(l) for l in open("render.stdout")]
+check(render == stdout, "render: the same records on stdout and in --out")
+check([r["threads"] for r in render] == [1, 2], "one render record per thread count")
+for r in render:
+    for k in ["bench", "scene", "n_tri", "preset", "threads", "tile", "repeats", "rays", "primary",
+              "shadow", "ao", "leaf_layout_bytes", "tracers", "ratio_kd_over_embree",
+              "ratio_kd_over_embree_packet", "embree_native_ray4", "validation", "timing",
+              "provenance"]:
+        check(k in r, "render record has no " + k)
+    check(r["bench"] == "render" and r["scene"] == "tiny" and r["n_tri"] == 10, "render: scene")
+    check(list(r["tracers"]) == ["kd", "kd_packet", "embree", "embree_packet"], "render: tracers")
+    for name, t in r["tracers"].items():
+        check(len(t["T_R_runs"]) == 2 and len(t["T_R_warmup_runs"]) == 1,
+              "render: %s runs apart" % name)
+        check(t["T_R_min"] == min(t["T_R_runs"]), "render: min")
+    kd, em = r["tracers"]["kd"], r["tracers"]["embree"]
+    paired = sorted(e / k for e, k in zip(em["T_R_runs"], kd["T_R_runs"]))
+    check(abs(r["ratio_kd_over_embree"]["kd"]["paired"] - sum(paired) / 2) < 1e-12,
+          "render: paired per round")
+    check(set(r["ratio_kd_over_embree_packet"]) == {"kd", "kd_packet"}, "render: packet ratios")
+    v = r["validation"]
+    check(v["brute_force_mismatches"] == 0 and v["brute_force_checked"] > 0, "render: brute force")
+    check(v["variants_vs_kd_mismatches"] == {"kd": 0, "kd_packet": 0}, "render: variants")
+    check(isinstance(v["embree_disagreements"], dict), "render: Embree disagreements")
+    check(r["timing"]["rounds"] == 2 and r["timing"]["warmup"] == 1, "render: timing")
+    check_provenance(r, "render")
+print("ok")
+PY
+grep -q "repeats" err.txt
