@@ -1,9 +1,10 @@
 // kdrt's timing method (issue 22), the one render_bench uses too: each tracer
-// is first run once untimed (the warm-up, recorded apart), then the tracers
-// alternate in rounds, so that a slow stretch of a shared machine falls on
-// all of them alike, and each ratio between two tracers is paired per round
-// (the ratio of their times in one round, then the median over rounds).
-// The caller holds the machine-wide TimingLock around the rounds.
+// first traces the frame's rays once untimed (the warm-up, recorded apart),
+// then the tracers alternate in rounds, so that a slow stretch of a shared
+// machine falls on all of them alike, and each ratio between two tracers is
+// paired per round (the ratio of their times in one round, then the median
+// over rounds). The caller holds the machine-wide TimingLock around the
+// rounds.
 #ifndef KDTREE_CC_TOOLS_TIMED_RENDER_H_
 #define KDTREE_CC_TOOLS_TIMED_RENDER_H_
 
@@ -34,19 +35,18 @@ struct Lane {
   std::string name;  // for the progress line
   const Tracer* tracer = nullptr;
   RenderOptions opt;
-  double warmup_s = 0;  // the untimed first render
-  RenderResult last;    // the last render (warm-up or timed)
+  double warmup_s = 0;  // the untimed warm-up pass (set by the caller)
+  RenderResult last;    // what every timed render must reproduce (image, hit
+                        // counts); empty: the first timed render sets it
   Timed timed;
 };
 
 using StepFn = std::function<void(const std::string&)>;
 
-// Renders each lane once, untimed (warm-up).
-void WarmUp(const TriangleSoup& soup, const View& view, std::vector<Lane>* lanes, const StepFn& step);
-
 // Timed rounds: in each, every lane renders once, in order; rounds repeat
-// under MoreRuns(round totals, repeats, budget_s). Error when a lane's image
-// or hit counts change between its runs (the renderer is deterministic).
+// under MoreRuns(round totals, repeats, budget_s). Error when a render's image
+// or hit counts differ from the lane's `last` (the renderer is deterministic;
+// a lane may be given another tracer's result to reproduce).
 absl::Status TimeRounds(const TriangleSoup& soup, const View& view, int repeats, double budget_s,
                         std::vector<Lane>* lanes, const StepFn& step);
 
