@@ -17,9 +17,10 @@ STEPS = [("report", "report clipping-pruning"), ("bins", "bins 32"),
 
 def rec(scene, knob, step, t_b, t_r, sah, ok=True, **over):
     """A kdrt record (analysis/testdata.py) with experiments/accuracy.py's
-    knob and step."""
+    fields (knob, step, ...)."""
     return testdata.kdrt_record(
-        scene, "sah-hybrid", ok=ok, knob=knob, step=step, T_B=t_b, T_R=t_r,
+        scene, "sah-hybrid", added=testdata.accuracy_fields(scene, knob, step),
+        ok=ok, T_B=t_b, T_R=t_r,
         sah_cost=sah, N_IT=sah / 10.0, N_TR=sah / 20.0, mem_report_mb=2.0,
         **over)
 

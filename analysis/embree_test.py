@@ -44,7 +44,7 @@ class EmbreeTest(Fixture):
                               disagreements_at_origin=3,
                               disagreements_t_guard=1)
         self.append("alpha", "clipping", emb, T_R=0.4,
-                    disagreements={"reference_wrong": 4, "other_wrong": 2})
+                    disagreements=testdata.disagreements(reference_wrong=4, other_wrong=2))
         macros = embree.generate(self.ctx)
         self.assertEqual(macros["EmbreeScenes"][0], "1")
         self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")

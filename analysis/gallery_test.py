@@ -9,6 +9,7 @@ from PIL import Image
 
 from analysis import context
 from analysis import gallery
+from analysis import testdata
 
 
 class GalleryTest(unittest.TestCase):
@@ -22,8 +23,8 @@ class GalleryTest(unittest.TestCase):
             with open(os.path.join(results, "kdtree.jsonl"), "w") as f:
                 for scene in ("beta", "alpha", "gamma"):
                     for v in ("pruning", "clipping-pruning"):
-                        f.write(json.dumps({"ok": True, "scene": scene,
-                                            "preset": v, "T_R": 1.0}) + "\n")
+                        f.write(json.dumps(testdata.kdrt_record(scene, v))
+                                + "\n")
             Image.new("RGB", (800, 800), (200, 10, 10)).save(
                 os.path.join(images, "alpha_clipping-pruning.png"))
             Image.new("RGB", (800, 600), (10, 200, 10)).save(

@@ -48,8 +48,7 @@ class KdtreeAnalysisTest(unittest.TestCase):
         aliases), except the Embree and fast-render ones when not run."""
         rec = testdata.kdrt_record(
             "alpha", "sah-packet", embree=testdata.embree(),
-            fast_render=testdata.fast_render([1.2]),
-            disagreements={"reference_wrong": 0, "other_wrong": 0})
+            fast_render=testdata.fast_render([1.2]))
         missing = [name for name in kr.FIELDS
                    if kr.field(rec, name) is None]
         self.assertEqual(missing, [])

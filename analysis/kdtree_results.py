@@ -3,38 +3,55 @@ from //cc/tools:kdrt) as one tidy pandas DataFrame: a row per (scene,
 variant), the newest successful record of each.
 """
 
+import json
+import os
+
 import pandas as pd
 
 from analysis import provenance
 
 KDTREE_FILE = "kdtree.jsonl"
 
-VARIANTS = ["median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
-            "binning-8", "binning-32", "clipping", "pruning",
-            "clipping-pruning"]
-TITLES = {
-    "median-16-2": "Spatial median 16/2",
-    "median-24-2": "Spatial median 24/2",
-    "median-24-8": "Spatial median 24/8",
-    "binning-8-driving": "Binning 8 (driving axis)",
-    "binning-8": "Binning 8",
-    "binning-32": "Binning 32",
-    "clipping": "Clipping",
-    "pruning": "Pruning",
-    "clipping-pruning": "Clipping pruning",
-}
-# Beyond the report (experiments/matrix.json, beyond_variants): run by the
-# matrix for the comparison with Embree, not part of the report's tables.
-BEYOND = ["sah-packet", "sah-packet-binned"]
-TITLES["sah-packet"] = "SAH per packet of 4"
-TITLES["sah-packet-binned"] = "SAH per packet of 4, binned"
-# The report's three groups of three columns.
-GROUPS = [VARIANTS[0:3], VARIANTS[3:6], VARIANTS[6:9]]
+# The variants, their titles and the report's groups: experiments/matrix.json
+# (the one list; the py targets carry it as data).
+MATRIX = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
+    __file__))), "experiments", "matrix.json")
+
+
+def load_matrix(path=MATRIX):
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def _groups(matrix):
+    """The report's groups: [(name, [variant])], consecutive variants."""
+    out, first = [], 0
+    for group in matrix["groups"]:
+        out.append((group["name"], matrix["variants"][first:first + group["size"]]))
+        first += group["size"]
+    if first != len(matrix["variants"]):
+        raise ValueError("matrix.json: the groups hold %d variants, not the "
+                         "%d of variants" % (first, len(matrix["variants"])))
+    return out
+
+
+_MATRIX = load_matrix()
+# The report's nine, in the order of its tables.
+VARIANTS = list(_MATRIX["variants"])
+# Beyond the report (beyond_variants): run by the matrix for the comparison
+# with Embree, not part of the report's tables.
+BEYOND = list(_MATRIX["beyond_variants"])
+TITLES = dict(_MATRIX["titles"])
+# The report's three groups of three columns, and their names.
+GROUP_NAMES = [name for name, _ in _groups(_MATRIX)]
+GROUPS = [variants for _, variants in _groups(_MATRIX)]
 
 # Column -> where kdrt writes it in its record (//cc/tools:kdrt: flat
 # top-level names, the tree statistics of cc/kdtree/stats.cc StatsToJson
-# among them; "a.b" is member b of object a). Timing columns are the medians
-# of their timed rounds; the *_runs columns hold every round.
+# among them; "a.b" is member b of object a). Every path is a field of
+# cc/tools/kdrt_record.schema.json (record_schema_test), one column each.
+# Timing columns are the medians of their timed rounds; the *_runs columns
+# hold every round.
 FIELDS = {
     "T_B": "T_B", "T_R": "T_R", "perf": "perf_krays",
     "T_B_runs": "T_B_runs", "T_R_runs": "T_R_runs",
@@ -76,7 +93,7 @@ FIELDS = {
     "embree_rays_per_s": "embree.all_rays_per_s",
     "threads": "threads", "repeats": "repeats",
     "repeat_budget_s": "repeat_budget_s",
-    # Added by experiments/run_matrix.py.
+    # Added by experiments/run_matrix.py (the schema's run_matrix section).
     "job": "job", "concurrent_jobs": "concurrent_jobs",
 }
 

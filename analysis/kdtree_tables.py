@@ -32,9 +32,6 @@ SETS = [
      "average leaf depth; $N_{CL}$: clipped triangles; $N_{PR}$: pruned "
      "triangles."),
 ]
-GROUP_NAMES = ["spatial median", "binned SAH", "clipping and pruning"]
-
-
 def fmt(kind, value):
     if value is None or value != value:  # None or NaN
         return latex.DASH
@@ -79,7 +76,7 @@ def generate(ctx):
         for k, variants in enumerate(kr.GROUPS):
             number = first + k
             caption = ("Ours, as the report's Table~%d (%s). %s"
-                       % (number, GROUP_NAMES[k], stem))
+                       % (number, kr.GROUP_NAMES[k], stem))
             ctx.write("table%d.tex" % number,
                       render(df, scenes, variants, columns, caption,
                              "tab:t%d" % number))

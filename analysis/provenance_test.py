@@ -12,13 +12,20 @@ from analysis import testdata
 
 
 def rec(scene="alpha", preset="clipping", **prov):
-    return {"scene": scene, "preset": preset,
-            "provenance": testdata.provenance(**prov)}
+    return testdata.kdrt_record(scene, preset,
+                                provenance=testdata.provenance(**prov))
+
+
+def old(scene="alpha", preset="clipping", **fields):
+    """A record from before kdrt wrote provenance (fields: what it had)."""
+    record = testdata.kdrt_record(scene, preset, **fields)
+    del record["provenance"]
+    return record
 
 
 class ReadTest(unittest.TestCase):
     def test_a_record_without_provenance_is_unknown(self):
-        self.assertIsNone(pv.of({"scene": "alpha", "git_commit": "abc"}))
+        self.assertIsNone(pv.of(old(git_commit="abc")))
         self.assertIsNone(pv.code_key(pv.of({})))
         self.assertIn("unknown provenance", pv.short(None))
 
@@ -59,9 +66,9 @@ class CheckTest(unittest.TestCase):
 
     def test_unknown_differs_from_known(self):
         with self.assertRaisesRegex(pv.ProvenanceError, "unknown provenance"):
-            pv.check_one_provenance([rec(), {"scene": "beta", "preset": "x"}])
+            pv.check_one_provenance([rec(), old("beta", "x")])
         # Unknown alone is one provenance.
-        pv.check_one_provenance([{"scene": "a"}, {"scene": "b"}])
+        pv.check_one_provenance([old("a"), old("b")])
 
     def test_two_cpus_need_their_own_flag(self):
         records = [rec(), rec("beta", cpu_model="Other CPU")]
@@ -80,7 +87,7 @@ class CheckTest(unittest.TestCase):
         self.assertIn("0123456789ab, fastbuild", message)
         self.assertIn("--allow_unoptimized_timings", message)
         pv.check_timing_builds(records, allow=True)
-        pv.check_timing_builds([{"scene": "old"}])  # unknown: not refused
+        pv.check_timing_builds([old("old")])  # unknown: not refused
 
     def test_check_reads_the_context_flags(self):
         ctx = context.Context("r", "m", "o")

@@ -46,9 +46,6 @@ class SeedTable1CsvTest(unittest.TestCase):
         self.assertEqual(int(df["n_tri"].sum()), 42612619)
 
 
-VARIANTS = ["median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
-            "binning-8", "binning-32", "clipping", "pruning",
-            "clipping-pruning"]
 METRICS = {2: ["T_B", "T_R", "perf", "N_IT", "N_TR"],
            5: ["N_I", "N_L", "N_TP", "N_AP", "mem"],
            8: ["R_E", "D_max", "D_avg", "N_CL", "N_PR"]}
@@ -57,7 +54,7 @@ METRICS = {2: ["T_B", "T_R", "perf", "N_IT", "N_TR"],
 def table_of(variant, metric):
     """The report's table holding (variant, metric): 2-10."""
     first = [t for t, ms in METRICS.items() if metric in ms][0]
-    return first + VARIANTS.index(variant) // 3
+    return first + [k for k, g in enumerate(kr.GROUPS) if variant in g][0]
 
 
 class SeedTables2To10CsvTest(unittest.TestCase):
@@ -82,7 +79,7 @@ class SeedTables2To10CsvTest(unittest.TestCase):
         self.assertEqual(len(df), 18 * 9 * 15 - (6 * 15 - 2))
         self.assertFalse(df.duplicated(["report_scene", "variant",
                                         "metric"]).any())
-        self.assertEqual(sorted(df["variant"].unique()), sorted(VARIANTS))
+        self.assertEqual(sorted(df["variant"].unique()), sorted(kr.VARIANTS))
         self.assertEqual(sorted(df["report_scene"].unique()),
                          list(range(1, 19)))
         for (table, variant, metric), n in df.groupby(
@@ -275,9 +272,7 @@ class SeedTable1RenderTest(unittest.TestCase):
 
 
 def kd_record(scene, preset, n_it, n_tr):
-    return {"ok": True, "scene": scene, "preset": preset, "n_tri": 1000,
-            "T_B": 0.5, "T_R": 1.0, "perf_krays": 640.0, "N_IT": n_it,
-            "N_TR": n_tr, "tree": {"N_I": 99, "N_L": 100}}
+    return testdata.kdrt_record(scene, preset, N_IT=n_it, N_TR=n_tr)
 
 
 class SeedCompareTest(unittest.TestCase):
@@ -305,8 +300,8 @@ class SeedCompareTest(unittest.TestCase):
         recs.append(kd_record("armadillo", "median-16-2", 40.0, 6.0))
         recs.append(kd_record("armadillo", "median-24-2", 12.5, 9.0))
         recs.append(kd_record("armadillo", "binning-32", 13.0, 5.25))
-        recs.append({"ok": False, "scene": "armadillo", "preset": "pruning",
-                     "N_IT": 0.1})
+        recs.append(testdata.kdrt_record("armadillo", "pruning", ok=False,
+                                         N_IT=0.1))
         with open(os.path.join(results, kr.KDTREE_FILE), "w") as f:
             for r in recs:
                 f.write(json.dumps(r) + "\n")

@@ -7,6 +7,8 @@ import json
 import os
 import statistics
 
+from analysis import kdtree_results as kr
+
 MANIFEST = {"scenes": [
     {"name": "bunny", "report_scene": None, "report_name": None,
      "kind": "package", "package": "fixture-meshes", "path": "bunny.ply",
@@ -86,9 +88,12 @@ def write_fixture(root, manifest=MANIFEST, records=RECORDS, machine=MACHINE):
 
 
 # --- kdrt records (results/kdtree.jsonl), in the shape //cc/tools:kdrt writes
-# them: flat statistics (cc/kdtree/stats.cc StatsToJson), "embree" and
-# "fast_render" objects (null when not run), one "provenance" object
-# (cc/base/provenance.h), and run_matrix.py's "ok", "job", "concurrent_jobs".
+# them (declared in cc/tools/kdrt_record.schema.json; record_schema_test
+# validates these fixtures against it, kdrt_records_test real records): flat
+# statistics (cc/kdtree/stats.cc StatsToJson), "embree" and "fast_render"
+# objects (null when not run), one "provenance" object (cc/base/provenance.h),
+# and run_matrix.py's "ok", "job", "profile", "wall_s", "node", "backend",
+# "concurrent_jobs".
 
 COMMIT = "0123456789abcdef0123456789abcdef01234567"
 TREE = "89abcdef0123456789abcdef0123456789abcdef"
@@ -110,62 +115,118 @@ def _traversal(rays):
     return {"rays": rays, "N_IT": 10.0, "N_TR": 20.0, "leaves": 3.0}
 
 
-def _effects(rays, seconds):
-    return {kind: {"rays": rays if kind != "ao" else 0,
-                   "seconds": seconds if kind != "ao" else 0.0}
-            for kind in ("primary", "shadow", "ao")}
+def _effects(rays, seconds, rounds=1):
+    def one(kind):
+        t = seconds if kind != "ao" else 0.0
+        return {"rays": rays if kind != "ao" else 0, "seconds": t,
+                "seconds_runs": [t] * rounds}
+    return {kind: one(kind) for kind in ("primary", "shadow", "ao")}
+
+
+def _config(max_depth=24, max_leaf_size=8):
+    return {"max_depth": max_depth, "max_leaf_size": max_leaf_size,
+            "use_binning": True, "use_driving_axis": True, "bins": 16,
+            "use_clipping": True, "use_pruning": True,
+            "cast_shadow_rays": True, "seed_compatible": False}
+
+
+def disagreements(**over):
+    """kdrt's "disagreements" object with no disagreement (override the
+    totals: reference_wrong=4, ...)."""
+    kind = {k: 0 for k in ("rays", "total", "grazing", "at_origin", "t_guard",
+                           "other", "hit_miss", "t_differs",
+                           "reference_wrong", "other_wrong")}
+    out = dict(kind, rays=940000, **over)
+    out.update(primary=dict(kind), shadow=dict(kind), ao=dict(kind))
+    return out
 
 
 def embree(t_r=0.2, ratios=None, t_b=0.1, **over):
     """kdrt's "embree" object: Embree's warm-up apart, then its timed rounds
     (paired_ratio_runs: Embree T_R / kd T_R per round; default one round)."""
     ratios = [1.0] if ratios is None else list(ratios)
-    emb = {"quality": "medium", "T_B_warmup": t_b, "T_R_warmup": t_r,
-           "T_B": t_b, "T_B_runs": [t_b] * len(ratios), "T_R": t_r,
-           "T_R_runs": [t_r] * len(ratios), "perf_krays": 640.0 / t_r,
+    emb = {"quality": "medium", "T_B": t_b, "T_B_runs": [t_b] * len(ratios),
+           "T_B_warmup": t_b, "T_R": t_r, "T_R_runs": [t_r] * len(ratios),
+           "T_R_warmup": t_r, "perf_krays": 640.0 / t_r,
            "all_rays_per_s": 940000 / t_r, "P_hit": 300, "P_miss": 340,
-           "S_hit": 100, "S_miss": 200, "effects": _effects(640000, t_r / 2),
-           "disagreements": 0, "disagreements_grazing": 0,
-           "disagreements_at_origin": 0, "disagreements_t_guard": 0,
-           "disagreements_other": 0, "paired_ratio_runs": ratios,
-           "paired_ratio": statistics.median(ratios)}
+           "S_hit": 100, "S_miss": 200,
+           "effects": _effects(640000, t_r / 2, len(ratios)),
+           "disagreements_grazing": 0, "disagreements_at_origin": 0,
+           "disagreements_t_guard": 0, "disagreements_other": 0,
+           "disagreements": 0, "paired_ratio_runs": ratios,
+           "paired_ratio": statistics.median(ratios),
+           "perf_ratio_kd_over_embree": statistics.median(ratios)}
     emb.update(over)
     return emb
 
 
-def kdrt_record(scene, preset, **over):
-    """One successful kdrt record with made-up numbers; keyword arguments
+def _base_record(scene, preset):
+    """kdrt's fields, in kdrt's order, with made-up numbers."""
+    return {"scene": scene, "mesh": "/fixture/%s.obj" % scene, "n_tri": 1000,
+            "load_s": 0.01, "preset": preset, "label": preset, "env_file": None,
+            "overrides": [], "config": _config(), "env": "KDTree { }",
+            "view_source": "auto", "view": "fixture", "width": 800,
+            "height": 800, "lights": 1, "threads": 1, "repeats": 1,
+            "repeat_budget_s": 0,
+            "timing": {"method": "fixture", "rounds": 1, "lock_wait_s": 0.0,
+                       "phases_s": {"load": 0.01, "timed renders": 1.0}},
+            "T_B": 0.5, "T_B_runs": [0.5], "T_B_warmup": 0.5, "T_R": 1.0,
+            "T_R_runs": [1.0], "T_R_warmup": 1.0, "perf_krays": 640.0,
+            "all_rays_per_s": 940000.0, "rays_total": 940000, "N_IT": 10.0,
+            "N_TR": 20.0,
+            "traversal": {"primary": _traversal(640000),
+                          "shadow": _traversal(300000), "ao": _traversal(0)},
+            "counting_mismatches": 0, "N_I": 99, "N_L": 100, "N_empty": 10,
+            "N_TP": 500, "N_AP": 5.0, "R_E": 0.1, "D_max": 24, "D_avg": 18.0,
+            "N_CL": 0, "N_PR": 0, "N_lost_planar": 0, "mem_report_mb": 0.01,
+            "tree_bytes": 4000, "build_peak_bytes": 8000, "sah_cost": 50.0,
+            "invalid_leaf_boxes": 0, "P_hit": 300, "P_miss": 340,
+            "S_hit": 100, "S_miss": 200, "AO_hit": 0, "AO_miss": 0,
+            "effects": _effects(640000, 0.5), "image": None,
+            "image_fnv64": "0123456789abcdef", "embree": None,
+            "disagreements": None, "perf_ratio_kd_over_embree": None,
+            "fast_render": None, "provenance": provenance()}
+
+
+def matrix_fields(scene, preset, profile="quick", concurrent_jobs=1):
+    """What experiments/run_matrix.py adds to a successful kdrt record."""
+    return {"ok": True, "job": [scene, preset, 1, 1, "off", TREE],
+            "profile": profile, "wall_s": 2.0, "node": {"host": "fixture"},
+            "backend": "local", "concurrent_jobs": concurrent_jobs}
+
+
+def accuracy_fields(scene, knob, step, options=None):
+    """What experiments/accuracy.py adds to a successful kdrt record."""
+    return {"ok": True, "job": [scene, step, 1, TREE], "knob": knob,
+            "step": step, "options": options or {}, "profile": "quick",
+            "wall_s": 2.0, "node": {"host": "fixture"}}
+
+
+def failure(scene, preset, error="boom"):
+    """run_matrix.py's record of a failed kdrt run."""
+    return {"ok": False, "job": [scene, preset, 1, 1, "off", TREE],
+            "scene": scene, "preset": preset, "profile": "quick",
+            "returncode": 1, "wall_s": 0.1, "command": ["kdrt"],
+            "error": error, "backend": "local", "concurrent_jobs": 1}
+
+
+def kdrt_record(scene, preset, added=None, **over):
+    """One successful record: kdrt's fields and a runner's (`added`; default
+    run_matrix.py's, matrix_fields) with made-up numbers; keyword arguments
     replace top-level members (T_B, N_CL, embree=embree(...), ...). A T_B or
-    T_R given without its runs gets runs of that one value."""
-    rec = {"scene": scene, "mesh": "/fixture/%s.obj" % scene, "n_tri": 1000,
-           "load_s": 0.01, "preset": preset, "label": preset, "env_file": None,
-           "overrides": [], "config": {"max_depth": 24, "max_leaf_size": 8},
-           "env": "KDTree { }", "view_source": "auto", "view": "fixture",
-           "width": 800, "height": 800, "lights": 1, "threads": 1,
-           "repeats": 1, "repeat_budget_s": 0, "T_B_warmup": 0.5,
-           "T_R_warmup": 1.0, "T_B": 0.5, "T_B_runs": [0.5], "T_R": 1.0,
-           "T_R_runs": [1.0], "perf_krays": 640.0, "all_rays_per_s": 940000.0,
-           "rays_total": 940000, "N_IT": 10.0, "N_TR": 20.0,
-           "traversal": {"primary": _traversal(640000),
-                         "shadow": _traversal(300000), "ao": _traversal(0)},
-           "counting_mismatches": 0, "N_I": 99, "N_L": 100, "N_empty": 10,
-           "N_TP": 500, "N_AP": 5.0, "R_E": 0.1, "D_max": 24, "D_avg": 18.0,
-           "N_CL": 0, "N_PR": 0, "N_lost_planar": 0, "mem_report_mb": 0.01,
-           "tree_bytes": 4000, "build_peak_bytes": 8000, "sah_cost": 50.0,
-           "invalid_leaf_boxes": 0, "P_hit": 300, "P_miss": 340, "S_hit": 100,
-           "S_miss": 200, "AO_hit": 0, "AO_miss": 0,
-           "effects": _effects(640000, 0.5), "image": None,
-           "image_fnv64": "0123456789abcdef", "embree": None,
-           "disagreements": None, "perf_ratio_kd_over_embree": None,
-           "fast_render": None, "provenance": provenance(),
-           "ok": True, "job": [scene, preset, 1, 1, "off", TREE],
-           "concurrent_jobs": 1}
+    T_R given without its runs gets runs of that one value; embree=...
+    without disagreements gets kdrt's object of none (and the top-level perf
+    ratio of its paired median)."""
+    rec = _base_record(scene, preset)
+    rec.update(matrix_fields(scene, preset) if added is None else added)
     for key in ("T_B", "T_R"):
         if key in over and key + "_runs" not in over:
             over[key + "_runs"] = [over[key]]
     rec.update(over)
     if isinstance(rec["embree"], dict):
         rec["perf_ratio_kd_over_embree"] = rec["embree"].get("paired_ratio")
+        if rec["disagreements"] is None:
+            rec["disagreements"] = disagreements()
     return rec
 
 
@@ -185,8 +246,7 @@ def write_kdtree(results_dir, records):
             f.write(json.dumps(rec) + "\n")
 
 
-NINE = ["median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
-        "binning-8", "binning-32", "clipping", "pruning", "clipping-pruning"]
+NINE = kr.VARIANTS  # the report's nine (experiments/matrix.json)
 # Per variant, what differs from kdrt_record's defaults in kdtree_fixture.
 KDTREE_OVERRIDES = {
     "median-16-2": {"N_IT": 100.0, "N_TR": 5.0, "N_AP": 40.0},
@@ -209,9 +269,7 @@ def kdtree_fixture(root):
     os.makedirs(results, exist_ok=True)
     recs = [kdrt_record(scene, v, **dict(KDTREE_OVERRIDES.get(v, {})))
             for scene in ("alpha", "beta", "gamma") for v in NINE]
-    recs.append({"ok": False, "scene": "alpha", "preset": "binning-8",
-                 "job": ["alpha", "binning-8", 1, 1, "off", TREE],
-                 "error": "boom", "returncode": 1})
+    recs.append(failure("alpha", "binning-8"))
     write_kdtree(results, recs)
     manifest = os.path.join(root, "manifest.json")
     with open(manifest, "w", encoding="utf-8") as f:

@@ -24,7 +24,8 @@ Provenance: every record carries the "provenance" of the binary that made it
 (cc/base/provenance.h). Each summary states it (commit, dirty, compilation
 mode, CPU) and refuses to summarise records of different source trees, or
 timings from a binary not built for timing (bazel -c opt), unless
---allow_mixed_provenance is given. The benches are run from the repository
+--allow_mixed_provenance (or, for a non-optimised build,
+--allow_unoptimized_timings) is given. The benches are run from the repository
 root, so their records carry this checkout's provenance.
 """
 import argparse
@@ -35,6 +36,9 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, ROOT)
+
+from analysis import provenance  # noqa: E402  (the one provenance check)
 # The --config=opt binaries (bazel-bin follows the last build, which may be
 # a test build).
 BIN = os.path.join(ROOT, "bazel-out", "k8-opt", "bin", "cc", "bench")
@@ -68,26 +72,7 @@ def read(path):
         return [json.loads(line) for line in f if line.strip()]
 
 
-class ProvenanceError(ValueError):
-    """Records of different provenance, or not built for timing, would be
-    summarised together."""
-
-
-def provenance_of(record):
-    """The record's provenance object, or None (a record from before it)."""
-    prov = record.get("provenance")
-    return prov if isinstance(prov, dict) else None
-
-
-def code_key(prov):
-    """What must be equal for two records to come from one code: the source
-    tree (without one, the commit and whether it was dirty); None when the
-    provenance is unknown."""
-    if prov is None:
-        return None
-    if prov.get("source_tree"):
-        return ("tree", prov["source_tree"])
-    return ("commit", prov.get("commit"), bool(prov.get("dirty")))
+ProvenanceError = provenance.ProvenanceError
 
 
 def describe(prov):
@@ -102,43 +87,16 @@ def describe(prov):
         prov.get("cpu_model") or "unknown CPU")
 
 
-def _label(record):
-    return "/".join(str(record[k]) for k in ("scene", "preset", "threads") if k in record)
-
-
-def check_provenance(records, what, allow_mixed=False):
+def check_provenance(records, what, allow_mixed=False, allow_unoptimized=False):
     """The distinct provenances of the records, [(provenance, count)] in order
-    first seen (distinct code or CPU). Raises ProvenanceError when they come
-    from more than one source tree, or when a timing comes from a binary not
-    built for timing (provenance timing_build false; a record before provenance
-    with "optimized": false), unless allow_mixed."""
-    by_code, by_prov = {}, {}
-    for r in records:
-        prov = provenance_of(r)
-        by_code.setdefault(code_key(prov), []).append(r)
-        key = (code_key(prov), prov.get("compilation_mode") if prov else None,
-               prov.get("cpu_model") if prov else None)
-        by_prov.setdefault(key, [prov, 0])[1] += 1
-    if not allow_mixed:
-        if len(by_code) > 1:
-            raise ProvenanceError(
-                "%s: records of %d source trees: %s. Summarise one run (another --out), or "
-                "pass --allow_mixed_provenance" % (what, len(by_code), "; ".join(
-                    "%s (%d records, e.g. %s)" % (describe(provenance_of(rs[0])), len(rs),
-                                                 _label(rs[0]))
-                    for rs in by_code.values())))
-        for r in records:
-            prov = provenance_of(r)
-            slow = (not prov.get("timing_build")) if prov else r.get("optimized") is False
-            if slow:
-                raise ProvenanceError(
-                    "%s: %s was timed with a binary not built for timing (%s%s); rebuild with "
-                    "bazel build --config=opt and rerun, or pass --allow_mixed_provenance" % (
-                        what, _label(r), describe(prov),
-                        ", optimized %s, ndebug %s" % (json.dumps(prov.get("optimized")),
-                                                      json.dumps(prov.get("ndebug")))
-                        if prov else ", optimized false"))
-    return [tuple(v) for v in by_prov.values()]
+    first seen. The analysis's checks (analysis/provenance.py): raises
+    ProvenanceError when the records come from more than one code (source
+    tree and compilation mode) or CPU, or a timing from a binary not built for
+    timing, unless allowed (--allow_mixed_provenance, which allows mixed CPUs
+    too, and --allow_unoptimized_timings)."""
+    grouped = provenance.check_one_provenance(records, allow_mixed, allow_mixed, what)
+    provenance.check_timing_builds(records, allow_unoptimized, what)
+    return [(prov, len(recs)) for prov, recs in grouped]
 
 
 def provenance_line(provenances):
@@ -151,10 +109,10 @@ def provenance_line(provenances):
         "%s (%d records)" % (describe(p), n) for p, n in provenances))
 
 
-def summarise(records, summary, what, allow_mixed=False):
+def summarise(records, summary, what, allow_mixed=False, allow_unoptimized=False):
     """The provenance line, then the summary; ProvenanceError as
     check_provenance."""
-    provenances = check_provenance(records, what, allow_mixed)
+    provenances = check_provenance(records, what, allow_mixed, allow_unoptimized)
     return provenance_line(provenances) + "\n\n" + summary(records)
 
 
@@ -328,6 +286,8 @@ def main(argv=None):
     p.add_argument("--allow_mixed_provenance", action="store_true",
                    help="summarise records of different source trees, or timed with a "
                         "binary not built for timing (each is stated)")
+    p.add_argument("--allow_unoptimized_timings", action="store_true",
+                   help="summarise timings from a binary not built for timing")
     a = p.parse_args(argv)
     a.repo, a.out = os.path.abspath(a.repo), os.path.abspath(a.out)
     index = os.path.join(a.repo, "data", "cache", "scenes", "index.json")
@@ -349,9 +309,9 @@ def main(argv=None):
                      "--variants", a.render_variants,
                      "--out", render_out])
     try:
-        build = summarise(read(build_out), build_summary, build_out, a.allow_mixed_provenance)
-        render = summarise(read(render_out), render_summary, render_out,
-                           a.allow_mixed_provenance)
+        allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
+        build = summarise(read(build_out), build_summary, build_out, *allow)
+        render = summarise(read(render_out), render_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")

@@ -1,9 +1,11 @@
 #include "cc/kdtree/env_file.h"
 
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
@@ -104,15 +106,32 @@ TEST(EnvFile, ErrorsNameFileLineAndReason) {
   }
 }
 
+// The matrix's variants (experiments/matrix.json, the one list): the
+// report's nine ("variants") and those beyond it ("beyond_variants").
+std::vector<std::string> MatrixVariants(const char* key) {
+  std::ifstream in("experiments/matrix.json");
+  EXPECT_TRUE(in.good()) << "experiments/matrix.json not in the runfiles";
+  const nlohmann::json matrix = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  EXPECT_TRUE(matrix.is_object() && matrix.contains(key) && matrix[key].is_array()) << key;
+  return matrix.is_object() && matrix.contains(key) ? matrix[key].get<std::vector<std::string>>()
+                                                    : std::vector<std::string>();
+}
+
+TEST(EnvFile, TheMatrixsNineAreTheReportsPresets) {
+  EXPECT_EQ(MatrixVariants("variants"), PresetNames());
+}
+
 TEST(EnvFile, ExperimentPresetFilesEqualTheNamedPresets) {
-  std::vector<std::string> names = PresetNames();
-  // The matrix's variants beyond the report.
-  names.push_back("sah-packet");
-  names.push_back("sah-packet-binned");
+  std::vector<std::string> names = MatrixVariants("variants");
+  const std::vector<std::string> beyond = MatrixVariants("beyond_variants");
+  names.insert(names.end(), beyond.begin(), beyond.end());
+  ASSERT_GE(names.size(), 9u);
   for (const std::string& name : names) {
     absl::StatusOr<EnvResult> r = LoadEnvironmentFile("experiments/presets/" + name + ".env");
     ASSERT_TRUE(r.ok()) << r.status();
-    EXPECT_EQ(r->config, *Preset(name)) << name;
+    absl::StatusOr<Config> preset = Preset(name);
+    ASSERT_TRUE(preset.ok()) << preset.status();
+    EXPECT_EQ(r->config, *preset) << name;
   }
 }
 
