@@ -12,15 +12,30 @@ both intersection modes), robust_sphere.tex (watertightness: misses from
 inside closed spheres), robust_spawn.tex (shadow rays at magnitudes 1e-8 to
 1e8: error-bound offset against none and a fixed epsilon), robust_cost.tex
 (fast versus watertight on the same rays, single thread) and macros.
+
+The cost table (issue 22) reads robust_cost_bench's paired records, the
+newest of each (scene, preset): a warm-up of each test excluded, then rounds
+alternating the two tests, each round's watertight / fast ratio paired. It
+shows the median of those ratios as the cost, with the lowest and highest
+round, and says "within noise" where that range includes 1 (the difference
+lies within the measured spread) instead of printing a cost. Records of the
+old unpaired format (one per test) are left out, with a note. Both files are
+refused when their records come from more than one code (source tree,
+compilation mode) or CPU, and the cost file when its timings come from a
+binary not built for timing (analysis/provenance.py; make_all's
+--allow_mixed_provenance, --allow_mixed_cpus, --allow_unoptimized_timings
+override, read from the context with getattr, default False).
 """
 
 import statistics
 
 from analysis import kdtree_results as kr
 from analysis import latex
+from analysis import provenance
 
 SUITE_FILE = "robust.jsonl"
 COST_FILE = "robust_cost.jsonl"
+GENERATED = "generated"  # the cost bench's own scene (every preset)
 
 CASE_TITLES = {
     1: "Axis-parallel rays ($\\pm 0$) on vertex and split grids",
@@ -43,7 +58,8 @@ MACROS = ["RobustCases", "RobustCasesPassed", "RobustPresets",
           "RobustSphereRays", "RobustSphereMisses", "RobustFastSphereMisses",
           "RobustSelfHits", "RobustFixedSelfHits", "RobustFixedSkipped",
           "RobustCostScenes", "RobustCostMedian", "RobustCostMin",
-          "RobustCostMax", "RobustCostDiffering", "RobustCostCpu"]
+          "RobustCostMax", "RobustCostDiffering", "RobustCostCpu",
+          "RobustCostWithinNoise"]
 
 
 def _compact(n):
@@ -188,51 +204,105 @@ def _spawn_table(records):
             bound_self, fixed_self, fixed_skip)
 
 
-def _cost_table(records, allow_mixed_cpus):
-    latest = {}
+def _paired(rec):
+    """A cost record of robust_cost_bench's paired format (one per scene and
+    preset, both tests timed in rounds), not the old one-per-test format."""
+    return (isinstance(rec.get("paired_ratio_runs"), list)
+            and rec["paired_ratio_runs"] and isinstance(rec.get("fast"), dict)
+            and isinstance(rec.get("watertight"), dict)
+            and rec.get("scene") and rec.get("preset"))
+
+
+def _signed_pct(ratio):
+    """Watertight / fast as a signed percentage of extra time: +5.2\\%."""
+    cost = 100.0 * (ratio - 1.0)
+    return ("+" if cost >= 0 else "$-$") + "%.1f\\%%" % abs(cost)
+
+
+def cost_verdict(runs):
+    """(paired median ratio, lowest, highest, within noise?) of a cost
+    record's paired_ratio_runs (watertight / fast per round). Within noise:
+    the range over the rounds includes 1, so the two tests' difference lies
+    within the measured spread. One round measures no spread: never within
+    noise, and the table says it was one round."""
+    ratio = statistics.median(runs)
+    lo, hi = min(runs), max(runs)
+    return ratio, lo, hi, len(runs) >= 2 and lo <= 1.0 <= hi
+
+
+def _cost_cell(runs):
+    ratio, lo, hi, noise = cost_verdict(runs)
+    rng = "%s to %s" % (_signed_pct(lo), _signed_pct(hi))
+    if noise:
+        return "within noise (%s)" % rng
+    if len(runs) < 2:
+        return "%s (one round)" % _signed_pct(ratio)
+    return "%s (%s)" % (_signed_pct(ratio), rng)
+
+
+def _cost_table(ctx, records):
+    """The cost table from the newest paired record of each (scene, preset);
+    refuses records of different provenance or from a binary not built for
+    timing (analysis/provenance.py, overridden by the context's flags)."""
+    latest, old = {}, 0
     for r in records:
-        latest[(r["scene"], r["preset"], r["mode"])] = r
-    cpus = sorted({r.get("cpu", "") for r in latest.values() if r.get("cpu")})
-    if len(cpus) > 1 and not allow_mixed_cpus:
-        raise ValueError("robust_cost.jsonl: timings from %d different CPUs "
-                         "(%s); rerun on one kind of node, or pass "
-                         "--allow_mixed_cpus" % (len(cpus), "; ".join(cpus)))
-    pairs = []
-    for (scene, preset, mode), fast in latest.items():
-        if mode != "fast" or (scene, preset, "watertight") not in latest:
-            continue
-        pairs.append((scene, preset, fast, latest[(scene, preset,
-                                                   "watertight")]))
+        if _paired(r):
+            latest[(r["scene"], r["preset"])] = r
+        else:
+            old += 1
+    recs = list(latest.values())
+    what = "%s (what robustness costs)" % COST_FILE
+    grouped = provenance.check_one_provenance(
+        recs, getattr(ctx, "allow_mixed_provenance", False),
+        getattr(ctx, "allow_mixed_cpus", False), what)
+    provenance.check_timing_builds(
+        recs, getattr(ctx, "allow_unoptimized_timings", False), what)
+    cpus = provenance.cpus(grouped)
     order = {p: i for i, p in enumerate(PRESETS)}
-    pairs.sort(key=lambda x: (x[0] == "generated", x[0],
-                              order.get(x[1], len(order))))
-    body, costs, differing = [], [], 0
-    for scene, preset, fast, wt in pairs:
-        cost = 100.0 * (wt["seconds"] / fast["seconds"] - 1.0)
+    rows = sorted(latest.items(), key=lambda x: (
+        x[0][0] == GENERATED, x[0][0], order.get(x[0][1], len(order))))
+    body, costs, noise, differing = [], [], 0, 0
+    for (scene, preset), r in rows:
+        runs = [float(x) for x in r["paired_ratio_runs"]]
+        ratio, _, _, within = cost_verdict(runs)
         if preset == "default":
-            costs.append(cost)
-        differing += int(wt["mismatches_between_modes"])
+            costs.append(100.0 * (ratio - 1.0))
+            noise += within
+        differing += int(r["mismatches_between_modes"])
         body.append([latex.escape(scene),
                      latex.escape(PRESET_TITLES.get(preset, preset)),
-                     latex.fmt_int(wt["triangles"]), latex.fmt_int(wt["rays"]),
-                     latex.fmt_float(fast["rays_per_s"] / 1e6),
-                     latex.fmt_float(wt["rays_per_s"] / 1e6),
-                     ("+" if cost >= 0 else "$-$") + "%.1f\\%%" % abs(cost),
-                     latex.fmt_int(wt["mismatches_between_modes"])])
+                     latex.fmt_int(r["triangles"]), latex.fmt_int(r["rays"]),
+                     latex.fmt_int(len(runs)),
+                     latex.fmt_float(r["rays"] / r["fast"]["seconds"] / 1e6),
+                     latex.fmt_float(r["rays"] / r["watertight"]["seconds"]
+                                     / 1e6),
+                     _cost_cell(runs),
+                     latex.fmt_int(r["mismatches_between_modes"])])
     if not body:
-        return "", costs, differing, cpus
-    header = ["Scene", "Preset", "$N_{tri}$", "Rays", "Fast Mrays/s",
-              "Watertight Mrays/s", "Cost", "Answers differing"]
+        return "", costs, noise, differing, cpus, old
+    header = ["Scene", "Preset", "$N_{tri}$", "Rays", "Rounds",
+              "Fast Mrays/s", "Watertight Mrays/s", "Cost (range)",
+              "Answers differing"]
     caption = ("What robustness costs: the same rays (the renderer's primary "
                "rays, then one shadow ray per hit and light) traced on the "
                "same tree with the fast (M\\\"oller--Trumbore) and the "
-               "watertight triangle test, one thread, the fastest of "
-               "alternating runs. ``Cost'': extra render time of the "
-               "watertight test. ``Answers differing'': rays whose hit "
+               "watertight triangle test, one thread: a warm-up of each "
+               "(not counted), then rounds in which both run, their order "
+               "swapping every round, alone on the machine (timing lock). "
+               "Mrays/s: of the median run. ``Cost'': extra time of the "
+               "watertight test, the median over the rounds of its time "
+               "over the fast test's in the same round, with the lowest and "
+               "highest round; ``within noise'' when that range includes no "
+               "difference. ``Answers differing'': rays whose hit "
                "(triangle, or occlusion) differs between the two tests.")
-    return (latex.booktabs(header, body, align="llrrrrrr", caption=caption,
-                           label="tab:robust-cost", size="footnotesize"),
-            costs, differing, cpus)
+    notes = None
+    if old:
+        notes = ["%d records of the old unpaired format (one per test) in "
+                 "%s are left out." % (old, latex.escape(COST_FILE))]
+    return (latex.booktabs(header, body, align="llrrrrrlr", caption=caption,
+                           label="tab:robust-cost", notes=notes,
+                           size="footnotesize"),
+            costs, noise, differing, cpus, old)
 
 
 def generate(ctx):
@@ -246,6 +316,11 @@ def generate(ctx):
             ctx.write(name, "")
         macros = dict(dash)
     else:
+        # Not timings: one code and one CPU, whatever the build.
+        provenance.check_one_provenance(
+            records, getattr(ctx, "allow_mixed_provenance", False),
+            getattr(ctx, "allow_mixed_cpus", False),
+            "%s (the adversarial suite)" % SUITE_FILE)
         binaries = {r["hard_case"]: r for r in records
                     if r.get("kind") == "binary"}
         tex, rays, bad, seed_bad, n_presets = _cases_table(records, binaries)
@@ -267,17 +342,21 @@ def generate(ctx):
             "RobustFastSphereMisses": num(s_fast),
             "RobustSelfHits": num(b_self), "RobustFixedSelfHits": num(f_self),
             "RobustFixedSkipped": num(f_skip)})
-    cost, costs, differing, cpus = _cost_table(cost_records,
-                                               getattr(ctx, "allow_mixed_cpus",
-                                                       False))
-    ctx.write("robust_cost.tex", cost or "\\emph{The robustness cost bench "
-              "was not run (no results/robust_cost.jsonl).}\n")
+    cost, costs, noise, differing, cpus, old = _cost_table(ctx, cost_records)
+    ctx.write("robust_cost.tex", cost or (
+        "\\emph{The robustness cost bench was not run (no paired records in "
+        "results/robust_cost.jsonl%s).}\n"
+        % ("; %d of the old unpaired format left out" % old if old else "")))
     if costs:
+        median = "%s" % _signed_pct(1.0 + statistics.median(costs) / 100.0)
+        if noise:
+            median += " (within noise on %d of %d scenes)" % (noise, len(costs))
         macros.update({
             "RobustCostScenes": (latex.fmt_int(len(costs)), False),
-            "RobustCostMedian": ("%.1f\\%%" % statistics.median(costs), True),
-            "RobustCostMin": ("%.1f\\%%" % min(costs), True),
-            "RobustCostMax": ("%.1f\\%%" % max(costs), True),
+            "RobustCostMedian": (median, True),
+            "RobustCostMin": (_signed_pct(1.0 + min(costs) / 100.0), True),
+            "RobustCostMax": (_signed_pct(1.0 + max(costs) / 100.0), True),
             "RobustCostDiffering": (latex.fmt_int(differing), False),
-            "RobustCostCpu": ("; ".join(cpus) or "unknown", False)})
+            "RobustCostCpu": ("; ".join(cpus) or "unknown", False),
+            "RobustCostWithinNoise": (latex.fmt_int(noise), False)})
     return macros

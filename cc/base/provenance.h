@@ -28,8 +28,9 @@ struct Provenance {
   std::string timing_lock;       // the TimingLock its timed steps held; "" = none
   std::string timestamp_utc;     // ISO 8601, when collected
 
-  // Other timed processes that ran beside this one's timed steps: 0 when they
-  // held the machine-wide TimingLock, unknown (null) without it.
+  // Work of this project's tools that ran beside this one's timed steps: 0
+  // when they held the machine-wide TimingLock (timing_lock.h: timed steps
+  // exclusively, other work shared), unknown (null) without it.
   nlohmann::ordered_json ToJson() const;
 };
 

@@ -146,6 +146,11 @@ int Run() {
   }
   // Where the numbers come from; the timed builds hold `lock`.
   TimingLock lock;
+  // Untimed work holds the lock shared, timed rounds exclusively (timing_lock.h).
+  if (const absl::Status st = lock.HoldShared(); !st.ok()) {
+    std::fprintf(stderr, "%s\n", std::string(st.message()).c_str());
+    return 1;
+  }
   Provenance provenance = CollectProvenance(Workspace());
   provenance.timing_lock = lock.path();
   const Json provenance_json = provenance.ToJson();

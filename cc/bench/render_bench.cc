@@ -446,6 +446,11 @@ int main(int argc, char** argv) {
   }
   // Where the numbers come from; the timed rounds hold `lock`.
   kdtree::TimingLock lock;
+  // Untimed work holds the lock shared, timed rounds exclusively (timing_lock.h).
+  if (const absl::Status st = lock.HoldShared(); !st.ok()) {
+    std::fprintf(stderr, "%s\n", std::string(st.message()).c_str());
+    return 1;
+  }
   kdtree::Provenance provenance = kdtree::CollectProvenance(kdtree::Workspace());
   provenance.timing_lock = lock.path();
   const kdtree::Context ctx{&lock, provenance.ToJson()};

@@ -4,7 +4,7 @@
 // robust traversal (cc/kdtree/traversal.h). The issue "Hard cases stay
 // numerically stable" asks for this number next to the adversarial suite.
 //
-//   bazel build --config=opt //cc/robust:robust_cost_bench
+//   bazel build -c opt //cc/robust:robust_cost_bench
 //   bazel-out/k8-opt/bin/cc/robust/robust_cost_bench --scene bunny --out FILE
 //       [--presets default] [--repeats 5] [--width 800 --height 800]
 //
@@ -18,53 +18,67 @@
 // spawned with the error-bound offset of cc/geometry/spawn.h from the
 // watertight hits of the default tree, so both modes trace exactly the same
 // rays. A view without a light gets the automatic view's light.
-// Timing: one thread; the two modes alternate within each of --repeats rounds
-// (fast then watertight, then the other way round, ...), so load changes on a
-// shared machine hit both;
-// the fastest run of each is reported, every run is recorded.
-// Output: one JSON line per preset and mode, appended to --out (stdout when
-// empty): rays, seconds, rays/s, hits, and the number of rays whose answer
-// differs between the two modes (hit versus miss or another triangle for
-// primary rays, occlusion for shadow rays; same triangle at a t differing in
-// the last bits is counted apart).
+//
+// Timing (issue 22, the method of kdrt and render_bench), one thread, per
+// preset: the tree is built (untimed), each test traces all rays once as an
+// untimed warm-up (recorded apart, never in a median), then, holding the
+// machine-wide TimingLock (cc/base/timing_lock.h), --repeats rounds in each
+// of which both tests trace all rays once, the order swapping every round
+// (fast first in rounds 1, 3, ...). Each round gives one paired ratio,
+// watertight seconds / fast seconds of that round; the record keeps every
+// run and every ratio, and their medians. Every timed run must give the same
+// answers as the warm-up (the traversal is deterministic).
+//
+// Output: one JSON line per preset (nlohmann-json), appended to --out
+// (stdout when empty); the fields are listed at RecordJson below. The
+// record's "provenance" (cc/base/provenance.h) names the code, the build and
+// the CPU, and the timing lock its rounds held.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/status/statusor.h"
-#include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/provenance.h"
+#include "cc/base/timing_lock.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
 #include "cc/render/camera.h"
-#include "cc/render/json.h"
 #include "cc/render/manifest.h"
 #include "cc/render/secondary_rays.h"
 #include "cc/render/view.h"
 #include "cc/robust/preset_check.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, scene, "", "manifest scene (data/cache/scenes/index.json)");
 ABSL_FLAG(std::string, mesh, "", "mesh file (default: a generated ~100k-triangle scene)");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "triangle-soup cache ('' = none)");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended); stdout when empty");
-ABSL_FLAG(std::string, presets, "", "comma-separated presets (default: default + the nine)");
+ABSL_FLAG(std::string, presets, "", "comma-separated presets (default: default + the nine + the two beyond)");
 ABSL_FLAG(int, width, 0, "image width (0: the view's)");
 ABSL_FLAG(int, height, 0, "image height (0: the view's)");
-ABSL_FLAG(int, repeats, 5, "timed rounds (both modes each); the fastest run is reported");
+ABSL_FLAG(int, repeats, 5, "timed rounds (each traces all rays with both tests), after one warm-up of each");
+ABSL_FLAG(std::string, repo_root, "",
+          "checkout whose provenance the record carries (default: $BUILD_WORKSPACE_DIRECTORY under bazel run, "
+          "else the working directory)");
+ABSL_FLAG(bool, list_presets, false, "print the default preset list, comma-separated, and exit");
 
 namespace kdtree {
 namespace {
+
+using Json = nlohmann::ordered_json;
 
 TriangleSoup GeneratedScene() {
   TriangleSoup soup = testing::BumpySphere(6, 11);  // radius about 1 at the origin
@@ -80,32 +94,77 @@ double Seconds(const std::chrono::steady_clock::time_point& start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string CpuModel() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
-      return std::string(absl::StripAsciiWhitespace(line.substr(line.find(':') + 1)));
-    }
-  }
-  return "";
+// The median of runs (mean of the middle two for an even count; 0 for none).
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct Trace {
-  std::vector<double> runs;
+// The answers of one trace of all rays with one test.
+struct Answers {
   std::vector<Hit> primary;
   std::vector<char> shadow;
-  double best() const { return *std::min_element(runs.begin(), runs.end()); }
+  bool operator==(const Answers& o) const {
+    if (shadow != o.shadow || primary.size() != o.primary.size()) return false;
+    for (size_t i = 0; i < primary.size(); ++i) {
+      const Hit &a = primary[i], &b = o.primary[i];
+      if (a.tri != b.tri || std::memcmp(&a.t, &b.t, sizeof(a.t)) != 0) return false;
+    }
+    return true;
+  }
 };
 
-void TraceOnce(const KdTree& tree, const std::vector<Ray>& primary, const std::vector<Ray>& shadow,
-               IntersectionMode mode, Trace* out) {
+// One triangle test: its warm-up, its timed runs (one per round) and answers.
+struct Lane {
+  Lane(IntersectionMode m, const char* n) : mode(m), name(n) {}
+  IntersectionMode mode;
+  const char* name;
+  double warmup_s = 0;
+  std::vector<double> runs;
+  Answers answers;  // the warm-up's
+};
+
+double TraceOnce(const KdTree& tree, const std::vector<Ray>& primary, const std::vector<Ray>& shadow,
+                 IntersectionMode mode, Answers* out) {
   out->primary.resize(primary.size());
   out->shadow.resize(shadow.size());
   const auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < primary.size(); ++i) out->primary[i] = Intersect(tree, primary[i], mode);
   for (size_t i = 0; i < shadow.size(); ++i) out->shadow[i] = Occluded(tree, shadow[i], mode);
-  out->runs.push_back(Seconds(start));
+  return Seconds(start);
+}
+
+// Warm-up of each lane (untimed, outside the lock), then `repeats` rounds
+// under the lock, the order swapping every round. Error: a timed run answered
+// differently from its warm-up, or the lock failed.
+absl::Status TimeLanes(const KdTree& tree, const std::vector<Ray>& primary, const std::vector<Ray>& shadow,
+                       int repeats, TimingLock* lock, Lane* first, Lane* second) {
+  for (Lane* lane : {first, second}) lane->warmup_s = TraceOnce(tree, primary, shadow, lane->mode, &lane->answers);
+  if (absl::Status st = lock->Acquire(); !st.ok()) return st;
+  Answers again;
+  for (int r = 0; r < repeats; ++r) {
+    Lane* order[2] = {first, second};
+    if (r % 2 == 1) std::swap(order[0], order[1]);
+    for (Lane* lane : order) {
+      lane->runs.push_back(TraceOnce(tree, primary, shadow, lane->mode, &again));
+      if (!(again == lane->answers)) {
+        lock->Release();
+        return absl::InternalError(absl::StrCat(lane->name, " test: round ", r + 1,
+                                                " answered differently from its warm-up"));
+      }
+    }
+  }
+  lock->Release();
+  return absl::OkStatus();
+}
+
+// num[i] / den[i] for each round both have.
+std::vector<double> PairedRatios(const std::vector<double>& num, const std::vector<double>& den) {
+  std::vector<double> out;
+  for (size_t i = 0; i < num.size() && i < den.size(); ++i) out.push_back(num[i] / den[i]);
+  return out;
 }
 
 struct Scene {
@@ -149,17 +208,42 @@ absl::StatusOr<Scene> LoadScene() {
   return s;
 }
 
+Json LaneJson(const Lane& lane, size_t rays) {
+  size_t primary_hits = 0, shadow_hits = 0;
+  for (const Hit& h : lane.answers.primary) primary_hits += h.hit();
+  for (char s : lane.answers.shadow) shadow_hits += s;
+  const double median = Median(lane.runs);
+  return {{"seconds", median},
+          {"seconds_runs", lane.runs},
+          {"warmup_seconds", lane.warmup_s},
+          {"rays_per_s", median > 0 ? Json(rays / median) : Json()},
+          {"primary_hits", primary_hits},
+          {"shadow_hits", shadow_hits}};
+}
+
+std::string RepoRoot() {
+  if (!absl::GetFlag(FLAGS_repo_root).empty()) return absl::GetFlag(FLAGS_repo_root);
+  const char* ws = std::getenv("BUILD_WORKSPACE_DIRECTORY");
+  return ws != nullptr && *ws != '\0' ? ws : ".";
+}
+
+std::string Percent(double ratio) { return absl::StrFormat("%+.1f%%", 100.0 * (ratio - 1.0)); }
+
 int Run() {
+  std::vector<std::string> presets = robust::CheckedPresets();
+  if (!absl::GetFlag(FLAGS_presets).empty()) {
+    presets = absl::StrSplit(absl::GetFlag(FLAGS_presets), ',', absl::SkipEmpty());
+  }
+  if (absl::GetFlag(FLAGS_list_presets)) {
+    std::printf("%s\n", absl::StrJoin(presets, ",").c_str());
+    return 0;
+  }
   absl::StatusOr<Scene> scene = LoadScene();
   if (!scene.ok()) {
     std::fprintf(stderr, "robust_cost_bench: %s\n", scene.status().ToString().c_str());
     return 1;
   }
   const TriangleSoup& soup = scene->soup;
-  std::vector<std::string> presets = robust::CheckedPresets();
-  if (!absl::GetFlag(FLAGS_presets).empty()) {
-    presets = absl::StrSplit(absl::GetFlag(FLAGS_presets), ',');
-  }
   const int repeats = std::max(1, absl::GetFlag(FLAGS_repeats));
   // The renderer's rays: primary, then shadow rays from the default tree's
   // watertight hits.
@@ -183,13 +267,6 @@ int Run() {
       }
     }
   }
-  const std::string cpu = CpuModel();
-  std::printf("%s: %zu triangles, %dx%d (%s view), %zu primary + %zu shadow rays, %d rounds, "
-              "single thread\n",
-              scene->name.c_str(), soup.size(), scene->view.width, scene->view.height,
-              scene->view_source.c_str(), primary.size(), shadow.size(), repeats);
-  std::printf("%-18s %10s %10s %12s %12s %8s %10s\n", "preset", "fast s", "robust s", "fast Mray/s",
-              "robust Mray/s", "cost", "mismatch");
   std::FILE* out = stdout;
   if (!absl::GetFlag(FLAGS_out).empty()) {
     out = std::fopen(absl::GetFlag(FLAGS_out).c_str(), "a");
@@ -198,58 +275,92 @@ int Run() {
       return 1;
     }
   }
+  // The progress table: on stdout, unless the records go there.
+  std::FILE* table = out == stdout ? stderr : stdout;
+  std::fprintf(table,
+               "%s: %zu triangles, %dx%d (%s view), %zu primary + %zu shadow rays, a warm-up and %d rounds "
+               "per test, single thread\n",
+               scene->name.c_str(), soup.size(), scene->view.width, scene->view.height,
+               scene->view_source.c_str(), primary.size(), shadow.size(), repeats);
+  std::fprintf(table, "%-18s %9s %9s %11s %11s %27s %8s\n", "preset", "fast s", "robust s", "fast Mray/s",
+               "robust Mray/s", "cost: paired median [range]", "mismatch");
+  // The provenance's code identity runs cc/base/source_id.sh once, here.
+  Provenance prov = CollectProvenance(RepoRoot());
+  TimingLock lock;
+  // Untimed work holds the lock shared, timed rounds exclusively (timing_lock.h).
+  if (const absl::Status st = lock.HoldShared(); !st.ok()) {
+    std::fprintf(stderr, "%s\n", std::string(st.message()).c_str());
+    return 1;
+  }
+  prov.timing_lock = lock.path();
+  const Json provenance = prov.ToJson();
   const size_t rays = primary.size() + shadow.size();
   for (const std::string& name : presets) {
     absl::StatusOr<Config> config = robust::ConfigFor(name);
     absl::StatusOr<KdTree> tree =
         config.ok() ? BuildKdTree(soup, *config) : absl::StatusOr<KdTree>(config.status());
     if (!tree.ok()) {
-      std::fprintf(stderr, "robust_cost_bench: %s: %s\n", name.c_str(),
-                   tree.status().ToString().c_str());
+      std::fprintf(stderr, "robust_cost_bench: %s: %s\n", name.c_str(), tree.status().ToString().c_str());
       return 1;
     }
-    Trace fast, robust;
-    for (int r = 0; r < repeats; ++r) {  // interleaved rounds, order alternating
-      const bool fast_first = r % 2 == 0;
-      TraceOnce(*tree, primary, shadow, fast_first ? IntersectionMode::kFast
-                                                   : IntersectionMode::kWatertight,
-                fast_first ? &fast : &robust);
-      TraceOnce(*tree, primary, shadow, fast_first ? IntersectionMode::kWatertight
-                                                   : IntersectionMode::kFast,
-                fast_first ? &robust : &fast);
+    Lane fast(IntersectionMode::kFast, "fast");
+    Lane robust(IntersectionMode::kWatertight, "watertight");
+    const double waited_before = lock.waited_seconds();
+    if (absl::Status st = TimeLanes(*tree, primary, shadow, repeats, &lock, &fast, &robust); !st.ok()) {
+      std::fprintf(stderr, "robust_cost_bench: %s: %s\n", name.c_str(), st.ToString().c_str());
+      return 1;
     }
     size_t mismatches = 0, other_t = 0;
     for (size_t i = 0; i < primary.size(); ++i) {
-      const Hit &f = fast.primary[i], &w = robust.primary[i];
+      const Hit &f = fast.answers.primary[i], &w = robust.answers.primary[i];
       mismatches += f.tri != w.tri;  // hit versus miss, or another triangle
       other_t += f.tri == w.tri && f.hit() && f.t != w.t;
     }
-    for (size_t i = 0; i < shadow.size(); ++i) mismatches += fast.shadow[i] != robust.shadow[i];
-    for (const Trace* t : {&fast, &robust}) {
-      size_t primary_hits = 0, shadow_hits = 0;
-      for (const Hit& h : t->primary) primary_hits += h.hit();
-      for (char s : t->shadow) shadow_hits += s;
-      std::vector<std::string> runs;
-      for (double s : t->runs) runs.push_back(absl::StrFormat("%.6f", s));
-      const std::string line = absl::StrFormat(
-          "{\"scene\": %s, \"triangles\": %zu, \"view\": %s, \"width\": %d, \"height\": %d, "
-          "\"preset\": %s, \"mode\": \"%s\", \"rays\": %zu, \"primary_rays\": %zu, "
-          "\"shadow_rays\": %zu, \"seconds\": %.6f, \"runs\": [%s], \"rays_per_s\": %.1f, "
-          "\"primary_hits\": %zu, \"shadow_hits\": %zu, \"mismatches_between_modes\": %zu, "
-          "\"same_triangle_other_t\": %zu, \"build_seconds\": %.4f, \"threads\": 1, "
-          "\"cpu\": %s}\n",
-          JsonQuote(scene->name), soup.size(), JsonQuote(scene->view_source), scene->view.width,
-          scene->view.height, JsonQuote(name), t == &fast ? "fast" : "watertight", rays,
-          primary.size(), shadow.size(), t->best(), absl::StrJoin(runs, ", "),
-          rays / t->best(), primary_hits, shadow_hits, mismatches, other_t,
-          tree->build_seconds, JsonQuote(cpu));
-      std::fputs(line.c_str(), out);
+    for (size_t i = 0; i < shadow.size(); ++i) mismatches += fast.answers.shadow[i] != robust.answers.shadow[i];
+    const std::vector<double> ratios = PairedRatios(robust.runs, fast.runs);
+    const double ratio = Median(ratios);
+    const double lo = *std::min_element(ratios.begin(), ratios.end());
+    const double hi = *std::max_element(ratios.begin(), ratios.end());
+    // The record. Times in seconds; "paired_ratio*" are watertight / fast.
+    Json rec = {{"scene", scene->name},
+                {"triangles", soup.size()},
+                {"view", scene->view_source},
+                {"width", scene->view.width},
+                {"height", scene->view.height},
+                {"preset", name},
+                {"threads", 1},
+                {"rays", rays},
+                {"primary_rays", primary.size()},
+                {"shadow_rays", shadow.size()},
+                {"build_seconds", tree->build_seconds},
+                {"repeats", repeats},
+                {"timing",
+                 {{"method",
+                   "warm-up of each test excluded and recorded apart, then rounds alternating the tests "
+                   "under the timing lock; ratios paired per round"},
+                  {"order", "fast first in odd rounds, watertight first in even rounds"},
+                  {"rounds", ratios.size()},
+                  {"lock_wait_s", lock.waited_seconds() - waited_before}}},
+                {"fast", LaneJson(fast, rays)},
+                {"watertight", LaneJson(robust, rays)},
+                {"paired_ratio_runs", ratios},
+                {"paired_ratio", ratio},
+                {"paired_ratio_min", lo},
+                {"paired_ratio_max", hi},
+                {"mismatches_between_modes", mismatches},
+                {"same_triangle_other_t", other_t},
+                {"provenance", provenance}};
+    const std::string line = rec.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+    if (std::fputs(line.c_str(), out) < 0 || std::fflush(out) != 0) {
+      std::fprintf(stderr, "robust_cost_bench: cannot write %s\n", absl::GetFlag(FLAGS_out).c_str());
+      return 1;
     }
-    std::fflush(out);
-    std::printf("%-18s %10.3f %10.3f %12.3f %12.3f %7.1f%% %10zu\n", name.c_str(), fast.best(),
-                robust.best(), rays / fast.best() * 1e-6, rays / robust.best() * 1e-6,
-                100.0 * (robust.best() / fast.best() - 1), mismatches);
-    std::fflush(stdout);
+    const double fm = Median(fast.runs), rm = Median(robust.runs);
+    const std::string cost = absl::StrCat(Percent(ratio), " [", Percent(lo), ", ", Percent(hi), "]",
+                                          lo <= 1.0 && 1.0 <= hi ? " noise" : "");
+    std::fprintf(table, "%-18s %9.3f %9.3f %11.3f %11.3f %27s %8zu\n", name.c_str(), fm, rm, rays / fm * 1e-6,
+                 rays / rm * 1e-6, cost.c_str(), mismatches);
+    std::fflush(table);
   }
   if (out != stdout) std::fclose(out);
   return 0;

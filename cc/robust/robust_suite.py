@@ -6,30 +6,49 @@ brute force on rays built to break traversal and intersection (Woop, Benthin
 watertight test costs against the fast one (Moeller & Trumbore 1997) on the
 same rays.
 
-    bazel build --config=opt //cc/robust:robust_suite //cc/robust:robust_cost_bench
-    B=bazel-out/k8-opt/bin/cc/robust
-    $B/robust_suite --out out/results/robust.jsonl \\
-        --cost_bench $B/robust_cost_bench --cost_out out/results/robust_cost.jsonl \\
-        --profile quick
+    P="--out out/results/robust.jsonl --cost_out out/results/robust_cost.jsonl --profile quick"
+    T=$(/usr/bin/python3 cc/robust/robust_suite.py $P --print_targets)
+    [ -z "$T" ] || bazel build -c opt $T
+    /usr/bin/python3 cc/robust/robust_suite.py $P \\
+        --bin_dir "$(bazel info -c opt bazel-bin)/cc/robust" --compilation_mode opt
+
+(run from the repository root; experiments/reproduce.sh does this). Nothing
+is rebuilt or rerun that the results already hold for the same code:
 
 Suite: each hard case is a gtest binary of cc/robust/BUILD (CASES below; run
 without a filter, so every scene of a parametrised case runs) that checks
 every preset against brute force and prints its numbers as `ROBUST_JSON {...}`
-lines. Every such record is written to --out with "hard_case" (1-9) and
-"binary" added, then one {"kind": "binary", ...} record per binary with its
-exit status ("passed": the gtest assertions, 0 mismatches, held). The suite
-is deterministic and rerun every time; --out is replaced only when all of it
-ran (a failing case is recorded, not fatal).
+lines. Every such record is written to --out with "hard_case" (1-9),
+"binary" and "provenance" added, then one {"kind": "binary", ...} record per
+binary with its exit status ("passed": the gtest assertions, 0 mismatches,
+held), and last one {"kind": "suite", ...} record: the profile, whether every
+case ran and passed, and the provenance. --out is replaced only when all of
+it ran (a failing case is recorded, not fatal). The binaries are untimed
+checks: --jobs of them run at once. When --out already holds a complete,
+passing run of the same source tree (cc/base/source_id.sh: the tools'
+sources, uncommitted edits included) and profile, the suite is skipped.
 
 Cost (with --cost_bench): robust_cost_bench on every scene of --profile
 (data/manifest.json) that data/fetch.py fetched (data/cache/scenes/index.json),
-preset "default", plus the generated scene with every preset. Appended to
---cost_out; a (scene, preset) already there is not rerun.
+preset "default", plus the generated scene with every preset ("default", then
+experiments/matrix.json's variants and beyond_variants). Appended to
+--cost_out; a (scene, preset) already there from the same source tree, from a
+timing build, with at least --repeats rounds, is not rerun. The bench runs
+after the suite, never beside it (its rounds are timed).
+
+"provenance" of the suite's records (the C++ case binaries do not collect it):
+commit, dirty and source_tree of the checkout (experiments/provenance.py's
+code_identity, or cc/base/source_id.sh), compilation_mode (--compilation_mode,
+else guessed from --bin_dir's bazel-out/<cpu>-<mode>/ path), cpu_model, cores,
+timestamp_utc and collected_by.
 """
 
 import argparse
+import concurrent.futures
+import importlib.util
 import json
 import os
+import re
 import subprocess
 import sys
 import time
@@ -50,7 +69,109 @@ CASES = [
 
 PREFIX = "ROBUST_JSON "
 GENERATED = "generated"  # the cost bench's own scene (every preset)
+SUITE_TARGET = "//cc/robust:robust_suite"  # builds every case binary
+COST_TARGET = "//cc/robust:robust_cost_bench"
 
+
+# --- provenance --------------------------------------------------------------
+
+def code_identity(repo_root="."):
+    """{"commit", "dirty", "source_tree"} of the checkout at repo_root:
+    experiments/provenance.py's code_identity when that file is there, else
+    cc/base/source_id.sh run directly; None values when unknown."""
+    root = os.path.abspath(repo_root)
+    module = os.path.join(root, "experiments", "provenance.py")
+    if os.path.exists(module):
+        spec = importlib.util.spec_from_file_location("_kdtree_provenance",
+                                                      module)
+        mod = importlib.util.module_from_spec(spec)
+        try:
+            spec.loader.exec_module(mod)
+            return dict(mod.code_identity(root))
+        except Exception as e:  # pylint: disable=broad-except
+            print("robust_suite: %s: %s; running source_id.sh" % (module, e),
+                  file=sys.stderr)
+    ident = {"commit": None, "dirty": False, "source_tree": None}
+    try:
+        out = subprocess.run(
+            ["sh", os.path.join(root, "cc", "base", "source_id.sh"), root],
+            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+            universal_newlines=True, check=True).stdout.split()
+        if len(out) == 3:
+            ident = {"commit": out[0], "dirty": out[1] == "true",
+                     "source_tree": out[2]}
+    except (OSError, subprocess.CalledProcessError):
+        pass
+    for key, env in (("commit", "KDTREE_GIT_COMMIT"),
+                     ("source_tree", "KDTREE_SOURCE_TREE")):
+        if os.environ.get(env):
+            ident[key] = os.environ[env]
+    return ident
+
+
+def guess_compilation_mode(bin_dir):
+    """"opt", "fastbuild" or "dbg" from a bazel-out/<cpu>-<mode>/bin path;
+    "unknown" otherwise."""
+    m = re.search(r"(?:^|/)bazel-out/[^/]*?-(opt|fastbuild|dbg)(?:-[^/]*)?/",
+                  os.path.abspath(bin_dir) + "/")
+    return m.group(1) if m else "unknown"
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as f:
+            for line in f:
+                if line.startswith("model name") and ":" in line:
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return None
+
+
+def suite_provenance(identity, compilation_mode):
+    """The provenance the suite's records carry (see the module doc)."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 0
+    return {"commit": identity.get("commit"),
+            "dirty": bool(identity.get("dirty")),
+            "source_tree": identity.get("source_tree"),
+            "compilation_mode": compilation_mode,
+            "cpu_model": cpu_model(), "cores": cores,
+            "timestamp_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ",
+                                           time.gmtime()),
+            "collected_by": "cc/robust/robust_suite.py"}
+
+
+def source_tree_of(rec):
+    prov = rec.get("provenance")
+    return prov.get("source_tree") if isinstance(prov, dict) else None
+
+
+def short_tree(tree):
+    return (tree or "unknown")[:12]
+
+
+def read_jsonl(path):
+    """The records of a JSON-lines file ([] when it does not exist); a line
+    that does not parse is skipped."""
+    out = []
+    if not os.path.exists(path):
+        return out
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            line = line.strip()
+            if not line:
+                continue
+            try:
+                out.append(json.loads(line))
+            except ValueError:
+                continue
+    return out
+
+
+# --- suite -------------------------------------------------------------------
 
 def parse_records(stdout):
     """The ROBUST_JSON records of a binary's output, in order."""
@@ -61,34 +182,91 @@ def parse_records(stdout):
     return out
 
 
-def run_suite(bin_dir, out_path, cases=CASES, log=sys.stderr):
-    """Runs every case binary; writes --out; returns the number that failed."""
-    records, failed = [], 0
+def suite_done(out_path, source_tree, profile, cases=None):
+    """The suite record of out_path when it is a complete, passing run of
+    source_tree (not None) and profile, with a passing binary record for
+    every case; else None."""
+    cases = CASES if cases is None else cases
+    if not source_tree:
+        return None
+    recs = read_jsonl(out_path)
+    suites = [r for r in recs if r.get("kind") == "suite"]
+    if not suites:
+        return None
+    suite = suites[-1]
+    if not (suite.get("complete") and suite.get("passed")
+            and suite.get("profile") == profile
+            and source_tree_of(suite) == source_tree):
+        return None
+    passed = {r.get("hard_case") for r in recs
+              if r.get("kind") == "binary" and r.get("passed")
+              and source_tree_of(r) == source_tree}
+    if not all(number in passed for number, _, _ in cases):
+        return None
+    return suite
+
+
+def _run_case(bin_dir, case):
+    number, binary, _ = case
+    start = time.time()
+    proc = subprocess.run([os.path.join(bin_dir, binary)],
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          universal_newlines=True, check=False)
+    return proc, time.time() - start
+
+
+def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
+              profile=None, jobs=1):
+    """Runs every case binary (jobs at a time); writes --out; returns the
+    number that failed."""
+    cases = CASES if cases is None else cases
+    log = log or sys.stderr
+    provenance = provenance or {}
+    start = time.time()
     for number, binary, what in cases:
-        path = os.path.join(bin_dir, binary)
-        start = time.time()
         print("robust_suite: case %d (%s): %s" % (number, what, binary),
               file=log, flush=True)
-        proc = subprocess.run([path], stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, universal_newlines=True,
-                              check=False)
-        seconds = time.time() - start
+    # Longest first (by the last run's times in out_path), so that no long
+    # case starts last; the records keep the cases' order.
+    last = {r.get("binary"): r.get("seconds") or 0 for r in read_jsonl(out_path)
+            if r.get("kind") == "binary"}
+    order = sorted(range(len(cases)), key=lambda i: -last.get(cases[i][1], 0))
+    with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
+        futures = {pool.submit(_run_case, bin_dir, cases[i]): i for i in order}
+        done = {}
+        for fut in concurrent.futures.as_completed(futures):
+            i = futures[fut]
+            done[i] = fut.result()
+            proc, seconds = done[i]
+            number, binary, _ = cases[i]
+            passed = proc.returncode == 0
+            print("robust_suite:   case %d %s, %s, %.1f s"
+                  % (number, binary,
+                     "passed" if passed else "FAILED (exit %d)"
+                     % proc.returncode, seconds), file=log, flush=True)
+            if not passed:
+                print(proc.stdout[-4000:], file=log)
+    records, failed = [], 0
+    for i, (number, binary, what) in enumerate(cases):
+        proc, seconds = done[i]
         found = parse_records(proc.stdout)
         for rec in found:
             rec["hard_case"] = number
             rec["binary"] = binary
+            rec["provenance"] = provenance
         records.extend(found)
         passed = proc.returncode == 0
         failed += not passed
         records.append({"kind": "binary", "hard_case": number,
                         "binary": binary, "what": what, "passed": passed,
                         "exit_code": proc.returncode, "records": len(found),
-                        "seconds": round(seconds, 3)})
-        print("robust_suite:   %s, %d records, %.1f s"
-              % ("passed" if passed else "FAILED (exit %d)" % proc.returncode,
-                 len(found), seconds), file=log, flush=True)
-        if not passed:
-            print(proc.stdout[-4000:], file=log)
+                        "seconds": round(seconds, 3),
+                        "provenance": provenance})
+    records.append({"kind": "suite", "profile": profile, "complete": True,
+                    "passed": failed == 0, "cases": len(cases),
+                    "failed": failed, "jobs": max(1, jobs),
+                    "seconds": round(time.time() - start, 3),
+                    "provenance": provenance})
     os.makedirs(os.path.dirname(os.path.abspath(out_path)), exist_ok=True)
     tmp = out_path + ".new"
     with open(tmp, "w", encoding="utf-8") as f:
@@ -97,6 +275,8 @@ def run_suite(bin_dir, out_path, cases=CASES, log=sys.stderr):
     os.replace(tmp, out_path)
     return failed
 
+
+# --- cost --------------------------------------------------------------------
 
 def profile_scenes(manifest_path, index_path, profile):
     """Names of the profile's scenes that are in the fetched index."""
@@ -110,37 +290,72 @@ def profile_scenes(manifest_path, index_path, profile):
             if profile in s.get("profiles", []) and s["name"] in fetched]
 
 
-def done_runs(cost_out):
-    """(scene, preset) pairs already measured in cost_out."""
+def generated_presets(matrix_path):
+    """"default", then the matrix's variants and beyond_variants."""
+    with open(matrix_path, encoding="utf-8") as f:
+        matrix = json.load(f)
+    return (["default"] + list(matrix["variants"])
+            + list(matrix.get("beyond_variants", [])))
+
+
+def done_runs(cost_out, source_tree, repeats=1):
+    """(scene, preset) pairs cost_out already holds from source_tree (not
+    None), from a timing build, with paired rounds, at least `repeats` of
+    them. Records of other code, of the old unpaired format or without
+    provenance do not count."""
     done = set()
-    if os.path.exists(cost_out):
-        with open(cost_out, encoding="utf-8") as f:
-            for line in f:
-                line = line.strip()
-                if line:
-                    rec = json.loads(line)
-                    done.add((rec["scene"], rec["preset"]))
+    if not source_tree:
+        return done
+    for rec in read_jsonl(cost_out):
+        prov = rec.get("provenance")
+        if (isinstance(prov, dict) and prov.get("source_tree") == source_tree
+                and prov.get("timing_build")
+                and len(rec.get("paired_ratio_runs") or []) >= repeats
+                and rec.get("scene") and rec.get("preset")):
+            done.add((rec["scene"], rec["preset"]))
     return done
 
 
-def run_cost(bench, cost_out, scenes, repeats=5, log=sys.stderr):
+def cost_jobs(scenes, presets_generated, done):
+    """[(scene, presets still to run)] for the profile's scenes (default
+    preset) and the generated scene (every preset); finished ones left out."""
+    jobs = [(s, ["default"]) for s in scenes]
+    jobs.append((GENERATED, list(presets_generated)))
+    out = []
+    for scene, presets in jobs:
+        todo = [p for p in presets if (scene, p) not in done]
+        if todo:
+            out.append((scene, todo))
+    return out
+
+
+def run_cost(bench, cost_out, scenes, repeats=5, log=None,
+             presets_generated=None, source_tree=None):
     """Runs the cost bench per scene (default preset) and on the generated
-    scene (every preset), skipping finished runs; returns failures."""
+    scene (every preset), skipping (scene, preset) runs of source_tree
+    already in cost_out; returns failures."""
+    log = log or sys.stderr
     os.makedirs(os.path.dirname(os.path.abspath(cost_out)), exist_ok=True)
-    done = done_runs(cost_out)
+    if presets_generated is None:  # the bench's own list
+        listed = subprocess.run([bench, "--list_presets"],
+                                stdout=subprocess.PIPE,
+                                universal_newlines=True, check=True).stdout
+        presets_generated = [p for p in listed.strip().split(",") if p]
+    done = done_runs(cost_out, source_tree, repeats)
+    jobs = cost_jobs(scenes, presets_generated, done)
+    skipped = len(scenes) + len(presets_generated) - sum(len(p) for _, p in jobs)
+    if skipped:
+        print("robust_suite: cost: %d (scene, preset) runs of source tree %s "
+              "already in %s, not rerun" % (skipped, short_tree(source_tree),
+                                            cost_out), file=log, flush=True)
     failed = 0
-    jobs = [(s, ["--scene", s, "--presets", "default"], ["default"])
-            for s in scenes]
-    jobs.append((GENERATED, [], None))
-    for scene, args, presets in jobs:
-        if presets is not None and all((scene, p) in done for p in presets):
-            continue
-        if presets is None and any(s == scene for s, _ in done):
-            continue
-        print("robust_suite: cost on %s" % scene, file=log, flush=True)
-        proc = subprocess.run([bench] + args + ["--out", cost_out,
-                                                "--repeats", str(repeats)],
-                              check=False)
+    for scene, presets in jobs:
+        args = [] if scene == GENERATED else ["--scene", scene]
+        print("robust_suite: cost on %s (%s)" % (scene, ",".join(presets)),
+              file=log, flush=True)
+        proc = subprocess.run([bench] + args + [
+            "--presets", ",".join(presets), "--out", cost_out,
+            "--repeats", str(repeats)], check=False)
         if proc.returncode != 0:
             failed += 1
             print("robust_suite: cost bench failed on %s (exit %d)"
@@ -148,7 +363,56 @@ def run_cost(bench, cost_out, scenes, repeats=5, log=sys.stderr):
     return failed
 
 
-def main(argv=None):
+# --- plan and main -----------------------------------------------------------
+
+def presets_for_generated(args):
+    """The generated scene's presets: --matrix's, else the bench's own list
+    (robust_cost_bench --list_presets)."""
+    if os.path.exists(args.matrix):
+        return generated_presets(args.matrix)
+    if args.cost_bench:
+        listed = subprocess.run([args.cost_bench, "--list_presets"],
+                                stdout=subprocess.PIPE,
+                                universal_newlines=True, check=True).stdout
+        return [p for p in listed.strip().split(",") if p]
+    raise ValueError("%s not found: pass --matrix, or --cost_bench to ask the "
+                     "bench for its presets" % args.matrix)
+
+
+def plan(args, identity, log=None):
+    """(run the suite?, [(scene, presets)] cost runs to do), with a line on
+    log for what is skipped and why."""
+    log = log or sys.stderr
+    tree = identity.get("source_tree")
+    if not tree:
+        print("robust_suite: the source tree is unknown (not a git "
+              "checkout?): nothing counts as done", file=log)
+    suite = None if args.skip_suite else suite_done(args.out, tree,
+                                                    args.profile)
+    if suite is not None:
+        print("robust_suite: %s already holds a complete, passing suite run "
+              "of source tree %s (profile %s, commit %s, %s): not rebuilt or "
+              "rerun" % (args.out, short_tree(tree), args.profile,
+                         (identity.get("commit") or "unknown")[:12],
+                         (suite.get("provenance") or {}).get("timestamp_utc")),
+              file=log, flush=True)
+    run = not args.skip_suite and suite is None
+    jobs = []
+    if args.cost:
+        scenes = profile_scenes(args.manifest, args.index, args.profile)
+        jobs = cost_jobs(scenes, presets_for_generated(args),
+                         done_runs(args.cost_out, tree, args.repeats))
+        if not jobs:
+            print("robust_suite: %s already holds every cost run of profile "
+                  "%s (%d scenes + %s) of source tree %s with >= %d rounds: "
+                  "not rebuilt or rerun" % (args.cost_out, args.profile,
+                                            len(scenes), GENERATED,
+                                            short_tree(tree), args.repeats),
+                  file=log, flush=True)
+    return run, jobs
+
+
+def main(argv=None, identity=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default="out/results/robust.jsonl")
     parser.add_argument("--bin_dir",
@@ -156,22 +420,51 @@ def main(argv=None):
                         help="where the case binaries are (default: beside "
                         "this script, i.e. the py_binary's runfiles)")
     parser.add_argument("--cost_bench", default="",
-                        help="robust_cost_bench binary ('' = no cost runs)")
+                        help="robust_cost_bench binary ('' = no cost runs; "
+                        "with --print_targets: see --cost)")
+    parser.add_argument("--cost", action="store_true",
+                        help="with --print_targets: plan the cost runs too")
     parser.add_argument("--cost_out", default="out/results/robust_cost.jsonl")
     parser.add_argument("--profile", default="quick")
     parser.add_argument("--manifest", default="data/manifest.json")
     parser.add_argument("--index", default="data/cache/scenes/index.json")
+    parser.add_argument("--matrix", default="experiments/matrix.json",
+                        help="the presets of the generated scene")
     parser.add_argument("--repeats", type=int, default=5,
-                        help="timed rounds per cost run (both modes each)")
+                        help="timed rounds per cost run (both tests each)")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="case binaries run at once (untimed checks)")
+    parser.add_argument("--repo_root", default=".",
+                        help="the checkout whose code identity is recorded")
+    parser.add_argument("--compilation_mode", default="",
+                        help="how the binaries were built (default: from "
+                        "--bin_dir's bazel-out path)")
     parser.add_argument("--skip_suite", action="store_true")
+    parser.add_argument("--print_targets", action="store_true",
+                        help="print the Bazel targets still needed (none "
+                        "when the results hold everything) and exit")
     args = parser.parse_args(argv)
+    args.cost = args.cost or bool(args.cost_bench)
+    if identity is None:
+        identity = code_identity(args.repo_root)
+    run, jobs = plan(args, identity)
+    if args.print_targets:
+        targets = ([SUITE_TARGET] if run else []) + ([COST_TARGET] if jobs
+                                                     else [])
+        print(" ".join(targets))
+        return 0
     failed = 0
-    if not args.skip_suite:
-        failed += run_suite(args.bin_dir, args.out)
-    if args.cost_bench:
+    if run:
+        mode = args.compilation_mode or guess_compilation_mode(args.bin_dir)
+        failed += run_suite(args.bin_dir, args.out,
+                            provenance=suite_provenance(identity, mode),
+                            profile=args.profile, jobs=args.jobs)
+    if args.cost_bench and jobs:
         scenes = profile_scenes(args.manifest, args.index, args.profile)
         failed += run_cost(args.cost_bench, args.cost_out, scenes,
-                           repeats=args.repeats)
+                           repeats=args.repeats,
+                           presets_generated=presets_for_generated(args),
+                           source_tree=identity.get("source_tree"))
     return 1 if failed else 0
 
 

@@ -198,6 +198,11 @@ absl::Status Run() {
   eo.threads = threads;
 
   Progress progress(absl::StrCat(scene, " ", rc->label));
+  // Untimed work holds the timing lock shared, timed rounds exclusively: no
+  // timed step of any process runs beside work of another (timing_lock.h).
+  TimingLock lock;
+  progress.Step("waiting for other processes' timed steps");
+  if (absl::Status st = lock.HoldShared(); !st.ok()) return st;
   progress.Step("loading mesh");
   LoadReport load;
   absl::StatusOr<TriangleSoup> soup = LoadMeshCached(mesh, FromWorkspace(absl::GetFlag(FLAGS_cache_dir)), &load);
@@ -215,7 +220,6 @@ absl::Status Run() {
 
   progress.Phase("load");
   // Builds (warm-up, then timed rounds under the lock).
-  TimingLock lock;
   TimedBuilds b;
   const auto step = [&progress](const std::string& what) { progress.Step(what); };
   absl::Status st =

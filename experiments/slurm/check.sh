@@ -13,8 +13,8 @@ PY=/usr/bin/python3
 
 bash experiments/setup.sh --with-slurm
 "$PY" data/fetch.py --profile "$PROFILE" || [ $? -eq 1 ]
-bazel build -c opt //cc/tools:kdrt
-KDRT="$(bazel info -c opt bazel-bin)/cc/tools/kdrt"
+bazel build --config=opt //cc/tools:kdrt
+KDRT="$(bazel info --config=opt bazel-bin)/cc/tools/kdrt"
 
 CLUSTER="$(mktemp -d /tmp/kdtree-slurm.XXXXXX)"
 trap 'bash experiments/slurm/cluster.sh stop "$CLUSTER"' EXIT
