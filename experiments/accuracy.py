@@ -127,7 +127,7 @@ def main(argv=None):
     if args.force:
         done = set()
     failed = 0
-    tree = provenance.code_identity()["source_tree"]
+    tree = provenance.pin()["source_tree"]
     for i, (scene, step) in enumerate(jobs):
         if tuple(job_key(scene, step, profile["repeats"], tree)) in done:
             continue

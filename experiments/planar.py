@@ -38,7 +38,7 @@ def main(argv=None):
     os.makedirs(images, exist_ok=True)
     path = os.path.join(results, RESULTS_FILE)
     # Done: recorded from the same code (experiments/provenance.py).
-    tree = provenance.code_identity()["source_tree"]
+    tree = provenance.pin()["source_tree"]
     done = set()
     if os.path.exists(path):
         with open(path, encoding="utf-8") as f:

@@ -3,7 +3,7 @@ the checkout is dirty, and the source tree id of cc/base/source_id.sh (the
 tools' sources, build files, presets and scene manifest, uncommitted edits
 included). The same script gives the C++ records their provenance
 (cc/base/provenance.cc), so a record's provenance.source_tree and the runner's
-key agree. $KDTREE_GIT_COMMIT and $KDTREE_SOURCE_TREE replace the commit and the
+key agree; pin() fixes it for a whole run ($KDTREE_SOURCE_ID). $KDTREE_GIT_COMMIT and $KDTREE_SOURCE_TREE replace the commit and the
 source tree when set, as in the C++ tools (tests, SLURM tasks).
 
 Standard library only.
@@ -14,6 +14,23 @@ import subprocess
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCRIPT = os.path.join("cc", "base", "source_id.sh")
+# The identity a runner pinned when the tools were built (the script's line):
+# every record of the run names that code, even if the checkout is edited
+# while it runs. Read here and by cc/base/provenance.cc.
+PIN = "KDTREE_SOURCE_ID"
+
+
+def pin(root=ROOT):
+    """Pins the checkout's identity now (unless already pinned) for this
+    process and the tools it starts; returns code_identity()."""
+    if not os.environ.get(PIN):
+        try:
+            os.environ[PIN] = subprocess.run(
+                ["sh", os.path.join(root, SCRIPT), root], stdout=subprocess.PIPE,
+                stderr=subprocess.DEVNULL, text=True, check=True).stdout.strip()
+        except (OSError, subprocess.CalledProcessError):
+            pass
+    return code_identity(root)
 
 
 def code_identity(root=ROOT):
@@ -21,9 +38,9 @@ def code_identity(root=ROOT):
     outside a git checkout."""
     ident = {"commit": None, "dirty": False, "source_tree": None}
     try:
-        out = subprocess.run(["sh", os.path.join(root, SCRIPT), root],
-                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                             text=True, check=True).stdout.split()
+        out = os.environ.get(PIN, "").split() or subprocess.run(
+            ["sh", os.path.join(root, SCRIPT), root], stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL, text=True, check=True).stdout.split()
         if len(out) == 3:
             ident = {"commit": out[0], "dirty": out[1] == "true",
                      "source_tree": out[2]}

@@ -43,6 +43,11 @@ BIN="$(bazel info --config=opt bazel-bin)"
 # The bazel-bin symlink follows whichever configuration was built last: ask
 # for the opt output directory instead of trusting it.
 SCENE_INFO="$BIN/cc/tools/scene_info"
+# The code these binaries were built from, pinned for every step's records
+# and job keys (cc/base/provenance.h), whatever happens to the checkout later.
+KDTREE_SOURCE_ID="$(sh cc/base/source_id.sh "$ROOT")"
+export KDTREE_SOURCE_ID
+echo "reproduce: code $KDTREE_SOURCE_ID (commit, dirty, source tree)"
 
 step "load scenes (scene_info)"
 "$PY" experiments/scenes.py --profile "$PROFILE" --out "$OUT" \

@@ -329,7 +329,7 @@ def main(argv=None):
         settings["repeats"] = args.repeats
     if args.embree:
         settings["embree"] = args.embree
-    ident = provenance.code_identity()
+    ident = provenance.pin()
     settings["source_tree"] = ident["source_tree"]
     print("run_matrix: code %s (source tree %s)"
           % (provenance.short(ident), ident["source_tree"]), file=sys.stderr)

@@ -70,9 +70,14 @@ std::string NowUtc() {
 
 void SetCodeIdentity(const std::string& repo_root, Provenance* p) {
   const std::string root = repo_root.empty() ? "." : repo_root;
-  bool ok = false;
-  const std::string line =
-      RunCommand("sh " + ShellQuote(root + "/cc/base/source_id.sh") + " " + ShellQuote(root) + " 2>/dev/null", &ok);
+  // Pinned by the runner when it built the tools (source_id.sh's line): the
+  // code the binary was built from, not whatever the checkout holds by now.
+  std::string line = Env("KDTREE_SOURCE_ID");
+  bool ok = !line.empty();
+  if (!ok) {
+    line = RunCommand("sh " + ShellQuote(root + "/cc/base/source_id.sh") + " " + ShellQuote(root) + " 2>/dev/null",
+                      &ok);
+  }
   std::istringstream words(line);
   std::string commit, dirty, tree;
   if (ok && (words >> commit >> dirty >> tree)) {

@@ -34,10 +34,13 @@ struct Provenance {
   nlohmann::ordered_json ToJson() const;
 };
 
-// Collects it for the checkout at repo_root by running
-// repo_root/cc/base/source_id.sh (a failure leaves commit and source_tree
-// empty). $KDTREE_GIT_COMMIT and $KDTREE_SOURCE_TREE, when set, replace the
-// commit and the source tree (SLURM tasks and tests). timing_lock is left
+// Collects it: the code identity is $KDTREE_SOURCE_ID when set (the line of
+// cc/base/source_id.sh that a runner pinned when it built the tools, so a
+// record names the code its binary was built from even if the checkout is
+// edited while it runs), else the output of repo_root/cc/base/source_id.sh
+// now (a failure leaves commit and source_tree empty). $KDTREE_GIT_COMMIT and
+// $KDTREE_SOURCE_TREE, when set, replace the commit and the source tree
+// (tests). timing_lock is left
 // empty: the caller sets it when its timed steps held the lock.
 Provenance CollectProvenance(const std::string& repo_root);
 

@@ -26,6 +26,15 @@ TEST(Provenance, KnowsTheCompileModeAndHonoursOverrides) {
   unsetenv("KDTREE_SOURCE_TREE");
 }
 
+TEST(Provenance, APinnedIdentityIsTheRecordsCode) {
+  setenv("KDTREE_SOURCE_ID", "c0ffee true 5eed", 1);
+  const Provenance p = CollectProvenance("/nonexistent/repo");  // the script is not run
+  EXPECT_EQ(p.commit, "c0ffee");
+  EXPECT_TRUE(p.dirty);
+  EXPECT_EQ(p.source_tree, "5eed");
+  unsetenv("KDTREE_SOURCE_ID");
+}
+
 TEST(Provenance, OutsideACheckoutTheCodeIsUnknown) {
   Provenance p = CollectProvenance("/nonexistent/repo");
   EXPECT_EQ(p.commit, "");
