@@ -39,6 +39,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
@@ -49,7 +50,6 @@
 #include "cc/kdtree/env_file.h"
 #include "cc/kdtree/stats.h"
 #include "cc/kdtree/traversal.h"
-#include "cc/render/json.h"
 
 ABSL_FLAG(std::string, mesh, "", "mesh file to build on");
 ABSL_FLAG(std::string, name, "", "scene name for the records (default: the file name)");
@@ -234,7 +234,7 @@ int Run() {
         (timed ? runs_by_threads[k] : warmup_by_threads[k]).push_back(t->build_seconds);
       }
     }
-    const Json stats_json = Json::parse(StatsToJson(stats));
+    const Json stats_json = StatsToJson(stats);
     for (size_t k = 0; k < thread_counts.size(); ++k) {
       const std::vector<double>& runs = runs_by_threads[k];
       const double median = Median(runs);

@@ -66,6 +66,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
@@ -78,7 +79,6 @@
 #include "cc/kdtree/env_file.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/render/compare.h"
-#include "cc/render/json.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
 #include "cc/render/renderer.h"
@@ -314,7 +314,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, eo);
       if (!e.ok()) return e.status();
       embree = *std::move(e);
-      disagree = Json::parse(CompareTracers(recorded.rays, *soup, kd, *embree).ToJson());
+      disagree = CompareTracers(recorded.rays, *soup, kd, *embree).ToJson();
       entries.emplace_back("embree", embree.get());
       if (absl::GetFlag(FLAGS_embree_packets)) entries.emplace_back("embree_packet", embree.get(), true);
     }

@@ -3,8 +3,8 @@
 #include <cstring>
 #include <vector>
 
-#include "absl/strings/str_format.h"
 #include "cc/kdtree/build_ref.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
@@ -90,15 +90,23 @@ uint64_t TreeFingerprint(const KdTree& tree) {
   return f.h;
 }
 
-std::string StatsToJson(const TreeStats& s) {
-  return absl::StrFormat(
-      "{\"N_I\": %d, \"N_L\": %d, \"N_empty\": %d, \"N_TP\": %d, \"N_AP\": %.6g, "
-      "\"R_E\": %.6g, \"D_max\": %d, \"D_avg\": %.6g, \"N_CL\": %d, \"N_PR\": %d, "
-      "\"N_lost_planar\": %d, \"mem_report_mb\": %.6g, \"tree_bytes\": %d, "
-      "\"build_peak_bytes\": %d, \"sah_cost\": %.9g, \"invalid_leaf_boxes\": %d}",
-      s.inner, s.leaves, s.empty_leaves, s.leaf_refs, s.avg_leaf_refs, s.empty_ratio, s.max_depth,
-      s.avg_depth, s.clipped, s.pruned, s.lost_planar, s.mem_report_mb, s.tree_bytes,
-      s.build_peak_bytes, s.sah_cost, s.invalid_leaf_boxes);
+nlohmann::ordered_json StatsToJson(const TreeStats& s) {
+  return {{"N_I", s.inner},
+          {"N_L", s.leaves},
+          {"N_empty", s.empty_leaves},
+          {"N_TP", s.leaf_refs},
+          {"N_AP", s.avg_leaf_refs},
+          {"R_E", s.empty_ratio},
+          {"D_max", s.max_depth},
+          {"D_avg", s.avg_depth},
+          {"N_CL", s.clipped},
+          {"N_PR", s.pruned},
+          {"N_lost_planar", s.lost_planar},
+          {"mem_report_mb", s.mem_report_mb},
+          {"tree_bytes", s.tree_bytes},
+          {"build_peak_bytes", s.build_peak_bytes},
+          {"sah_cost", s.sah_cost},
+          {"invalid_leaf_boxes", s.invalid_leaf_boxes}};
 }
 
 }  // namespace kdtree

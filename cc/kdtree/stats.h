@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cc/kdtree/tree.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 
@@ -46,8 +47,11 @@ struct TreeStats {
 
 TreeStats ComputeStats(const KdTree& tree);
 
-// One JSON object with every field of TreeStats plus the build counters.
-std::string StatsToJson(const TreeStats& s);
+// One JSON object with every field of TreeStats plus the build counters:
+// N_I, N_L, N_empty, N_TP, N_AP, R_E, D_max, D_avg, N_CL, N_PR, N_lost_planar,
+// mem_report_mb, tree_bytes, build_peak_bytes, sah_cost, invalid_leaf_boxes,
+// in this order (kdrt's and build_bench's records).
+nlohmann::ordered_json StatsToJson(const TreeStats& s);
 
 // FNV-1a (64 bits, over 64-bit words) of the tree: nodes (split bits and index bits),
 // reference lists, leaf-order packets and build counters. Two builds have the

@@ -1,7 +1,12 @@
 #include "cc/kdtree/stats.h"
 
+#include <cmath>
+#include <string>
+#include <vector>
+
 #include "cc/kdtree/builder.h"
 #include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
@@ -69,6 +74,37 @@ TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
   EXPECT_EQ(s.leaf_refs, 3u);
   EXPECT_EQ(tree.refs.size(), 1u + 2u + 3u);  // shared zero, {T0}, {T1, T2}
   EXPECT_EQ(s.max_depth, 3);
+}
+
+// StatsToJson: every field, in the order the records have always had; counts
+// as integers, non-finite values as null.
+TEST(Stats, ToJsonFieldsInOrder) {
+  const TriangleSoup soup = ThreeUnitTriangles();
+  Config c = *Preset("median-16-2");
+  c.max_leaf_size = 1;
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, c);
+  ASSERT_TRUE(tree.ok());
+  TreeStats s = ComputeStats(*tree);
+  const nlohmann::ordered_json j = StatsToJson(s);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : j.items()) keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"N_I", "N_L", "N_empty", "N_TP", "N_AP", "R_E", "D_max",
+                                            "D_avg", "N_CL", "N_PR", "N_lost_planar",
+                                            "mem_report_mb", "tree_bytes", "build_peak_bytes",
+                                            "sah_cost", "invalid_leaf_boxes"}));
+  EXPECT_TRUE(j["N_I"].is_number_integer());
+  EXPECT_EQ(j["N_I"].get<uint64_t>(), 2u);
+  EXPECT_EQ(j["D_max"].get<int>(), 2);
+  EXPECT_EQ(j["tree_bytes"].get<uint64_t>(), s.tree_bytes);
+  EXPECT_DOUBLE_EQ(j["D_avg"].get<double>(), 5.0 / 3.0);
+  EXPECT_DOUBLE_EQ(j["sah_cost"].get<double>(), s.sah_cost);
+  EXPECT_EQ(j.dump().rfind("{\"N_I\":2,\"N_L\":3,\"N_empty\":0,\"N_TP\":3,\"N_AP\":1.0,", 0), 0u)
+      << j.dump();
+  s.avg_leaf_refs = std::nan("");
+  s.avg_depth = INFINITY;
+  const nlohmann::ordered_json bad = StatsToJson(s);
+  EXPECT_NE(bad.dump().find("\"N_AP\":null,"), std::string::npos) << bad.dump();
+  EXPECT_NE(bad.dump().find("\"D_avg\":null,"), std::string::npos) << bad.dump();
 }
 
 TEST(Stats, FingerprintNamesTheTree) {

@@ -186,7 +186,7 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
               preset.c_str(), IntersectionModeName(mode), rays, hits,
               static_cast<double>(counters.triangle_tests) / counters.rays,
               static_cast<double>(counters.inner_visits) / counters.rays,
-              StatsToJson(stats).c_str());
+              StatsToJson(stats).dump().c_str());
 }
 
 INSTANTIATE_TEST_SUITE_P(

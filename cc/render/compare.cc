@@ -5,17 +5,22 @@
 #include "absl/strings/str_format.h"
 #include "cc/geometry/watertight.h"
 #include "cc/render/exact_check.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
 
-std::string KindJson(const KindDisagreements& k) {
-  return absl::StrFormat(
-      "{\"rays\": %d, \"total\": %d, \"grazing\": %d, \"at_origin\": %d, \"t_guard\": %d, "
-      "\"other\": %d, \"hit_miss\": %d, \"t_differs\": %d, \"reference_wrong\": %d, "
-      "\"other_wrong\": %d}",
-      k.rays, k.total(), k.grazing, k.at_origin, k.t_guard, k.other(), k.hit_miss, k.t_differs,
-      k.reference_wrong, k.other_wrong);
+nlohmann::ordered_json KindJson(const KindDisagreements& k) {
+  return {{"rays", k.rays},
+          {"total", k.total()},
+          {"grazing", k.grazing},
+          {"at_origin", k.at_origin},
+          {"t_guard", k.t_guard},
+          {"other", k.other()},
+          {"hit_miss", k.hit_miss},
+          {"t_differs", k.t_differs},
+          {"reference_wrong", k.reference_wrong},
+          {"other_wrong", k.other_wrong}};
 }
 
 void Add(const KindDisagreements& k, KindDisagreements* sum) {
@@ -50,14 +55,12 @@ bool WatertightHits(const TriangleSoup& soup, const Ray& ray, uint32_t tri) {
 
 }  // namespace
 
-std::string Disagreements::ToJson() const {
-  std::string k = KindJson(all);
-  k.pop_back();  // the closing brace: the per-kind objects go inside
+nlohmann::ordered_json Disagreements::ToJson() const {
+  nlohmann::ordered_json j = KindJson(all);
   for (int i = 0; i < kNumRayKinds; ++i) {
-    absl::StrAppendFormat(&k, ", \"%s\": %s", RayKindName(static_cast<RayKind>(i)),
-                          KindJson(by_kind[i]));
+    j[RayKindName(static_cast<RayKind>(i))] = KindJson(by_kind[i]);
   }
-  return k + "}";
+  return j;
 }
 
 Disagreements CompareTracers(const std::vector<RayRecord>& records, const TriangleSoup& soup,

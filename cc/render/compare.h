@@ -44,6 +44,7 @@
 #include "cc/geometry/triangle.h"
 #include "cc/render/ray_record.h"
 #include "cc/render/tracer.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 
@@ -71,8 +72,8 @@ struct Disagreements {
   std::vector<std::string> examples;
   // One JSON object: {"rays", "total", "grazing", "at_origin", "t_guard", "other",
   // "hit_miss", "t_differs", "reference_wrong", "other_wrong",
-  // "primary": {...}, "shadow": {...}, "ao": {...}}.
-  std::string ToJson() const;
+  // "primary": {...}, "shadow": {...}, "ao": {...}}, in this order.
+  nlohmann::ordered_json ToJson() const;
 };
 
 // Compares the recorded results of `reference` (whose results `records` hold)

@@ -1,5 +1,6 @@
 #include "cc/render/compare.h"
 
+#include <string>
 #include <vector>
 
 #include "cc/kdtree/brute_force.h"
@@ -7,6 +8,7 @@
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/ray_record.h"
 #include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
@@ -198,6 +200,37 @@ TEST(Compare, MissedTriangleIsOther) {
   EXPECT_EQ(d.all.reference_wrong, 0u);
   ASSERT_EQ(d.examples.size(), 2u);
   EXPECT_NE(d.examples[0].find("wrong: broken"), std::string::npos) << d.examples[0];
+}
+
+// ToJson: the totals, then one object per ray kind, keys in a fixed order.
+TEST(Compare, ToJsonFieldsInOrder) {
+  Disagreements d;
+  d.by_kind[0].rays = 5;
+  d.by_kind[0].hit_miss = 2;
+  d.by_kind[0].grazing = 1;
+  d.by_kind[2].t_differs = 1;
+  d.all.rays = 7;
+  d.all.hit_miss = 2;
+  d.all.t_differs = 1;
+  d.all.grazing = 1;
+  const nlohmann::ordered_json j = d.ToJson();
+  const std::vector<std::string> counts = {"rays", "total", "grazing", "at_origin",
+                                           "t_guard", "other", "hit_miss", "t_differs",
+                                           "reference_wrong", "other_wrong"};
+  std::vector<std::string> want = counts;
+  for (const char* kind : {"primary", "shadow", "ao"}) want.push_back(kind);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : j.items()) keys.push_back(key);
+  EXPECT_EQ(keys, want);
+  EXPECT_EQ(j["total"].get<uint64_t>(), 3u);
+  EXPECT_EQ(j["other"].get<uint64_t>(), 2u);
+  EXPECT_EQ(j["primary"]["rays"].get<uint64_t>(), 5u);
+  EXPECT_EQ(j["primary"]["other"].get<uint64_t>(), 1u);
+  EXPECT_EQ(j["ao"]["t_differs"].get<uint64_t>(), 1u);
+  std::vector<std::string> kind_keys;
+  for (const auto& [key, value] : j["shadow"].items()) kind_keys.push_back(key);
+  EXPECT_EQ(kind_keys, counts);
+  EXPECT_EQ(j.dump().rfind("{\"rays\":7,\"total\":3,", 0), 0u) << j.dump();
 }
 
 }  // namespace

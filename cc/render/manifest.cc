@@ -4,24 +4,34 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "cc/render/json.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
 
-absl::Status Vec3Field(const JsonValue& obj, const std::string& key, const std::string& where,
+using Json = nlohmann::json;
+
+// Object member `key`; nullptr when absent or when `obj` is not an object.
+const Json* Member(const Json& obj, const std::string& key) {
+  if (!obj.is_object()) return nullptr;
+  const auto it = obj.find(key);
+  return it == obj.end() ? nullptr : &*it;
+}
+
+absl::Status Vec3Field(const Json& obj, const std::string& key, const std::string& where,
                        bool required, Vec3* out) {
-  const JsonValue* v = obj.Find(key);
+  const Json* v = Member(obj, key);
   if (v == nullptr || v->is_null()) {
     if (!required) return absl::OkStatus();
     return absl::InvalidArgumentError(absl::StrCat(where, ": missing '", key, "'"));
   }
-  if (!v->is_array() || v->items().size() != 3 || !v->items()[0].is_number() ||
-      !v->items()[1].is_number() || !v->items()[2].is_number()) {
+  if (!v->is_array() || v->size() != 3 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+      !(*v)[2].is_number()) {
     return absl::InvalidArgumentError(
         absl::StrCat(where, ": '", key, "' must be an array of three numbers"));
   }
-  *out = Vec3(static_cast<float>(v->items()[0].number()), static_cast<float>(v->items()[1].number()),
-              static_cast<float>(v->items()[2].number()));
+  *out = Vec3((*v)[0].get<float>(), (*v)[1].get<float>(), (*v)[2].get<float>());
   return absl::OkStatus();
 }
 
@@ -32,8 +42,8 @@ bool FileExists(const std::string& path) {
 
 }  // namespace
 
-absl::StatusOr<View> ViewFromManifestEntry(const JsonValue& entry, const std::string& where) {
-  const JsonValue* cam = entry.Find("camera");
+absl::StatusOr<View> ViewFromManifestEntry(const Json& entry, const std::string& where) {
+  const Json* cam = Member(entry, "camera");
   if (cam == nullptr || !cam->is_object()) {
     return absl::InvalidArgumentError(absl::StrCat(where, ": no 'camera' object"));
   }
@@ -43,11 +53,11 @@ absl::StatusOr<View> ViewFromManifestEntry(const JsonValue& entry, const std::st
   if (st.ok()) st = Vec3Field(*cam, "look_at", cw, true, &view.camera.look_at);
   if (st.ok()) st = Vec3Field(*cam, "up", cw, false, &view.camera.up);
   if (!st.ok()) return st;
-  if (const JsonValue* fov = cam->Find("fov_deg"); fov != nullptr && !fov->is_null()) {
+  if (const Json* fov = Member(*cam, "fov_deg"); fov != nullptr && !fov->is_null()) {
     if (!fov->is_number()) return absl::InvalidArgumentError(absl::StrCat(cw, ": 'fov_deg' must be a number"));
-    view.camera.fov_deg = static_cast<float>(fov->number());
+    view.camera.fov_deg = fov->get<float>();
   }
-  const JsonValue* light = entry.Find("light");
+  const Json* light = Member(entry, "light");
   if (light != nullptr && !light->is_null()) {
     if (!light->is_object()) {
       return absl::InvalidArgumentError(absl::StrCat(where, ": 'light' must be an object or null"));
@@ -66,19 +76,19 @@ absl::StatusOr<SceneRef> ResolveScene(const std::string& repo_root, const std::s
   const std::string root = repo_root.empty() ? "." : repo_root;
   const std::string index_path = absl::StrCat(root, "/data/cache/scenes/index.json");
   const std::string hint = absl::StrCat(" (fetch it: /usr/bin/python3 data/fetch.py --scene ", name, ")");
-  absl::StatusOr<JsonValue> index = LoadJsonFile(index_path);
+  absl::StatusOr<Json> index = LoadJsonFile(index_path);
   if (!index.ok()) {
     return absl::NotFoundError(absl::StrCat(index.status().message(), hint));
   }
-  const JsonValue* scenes = index->Find("scenes");
-  const JsonValue* rec = scenes != nullptr ? scenes->Find(name) : nullptr;
-  const JsonValue* file = rec != nullptr ? rec->Find("file") : nullptr;
+  const Json* scenes = Member(*index, "scenes");
+  const Json* rec = scenes != nullptr ? Member(*scenes, name) : nullptr;
+  const Json* file = rec != nullptr ? Member(*rec, "file") : nullptr;
   if (file == nullptr || !file->is_string()) {
     return absl::NotFoundError(absl::StrCat(index_path, ": no scene '", name, "'", hint));
   }
   SceneRef ref;
   ref.name = name;
-  ref.mesh_path = file->string();
+  ref.mesh_path = file->get<std::string>();
   if (!ref.mesh_path.empty() && ref.mesh_path[0] != '/') ref.mesh_path = absl::StrCat(root, "/", ref.mesh_path);
   if (!FileExists(ref.mesh_path)) {
     return absl::NotFoundError(absl::StrCat(index_path, ": scene '", name, "' file ", ref.mesh_path,
@@ -96,16 +106,16 @@ absl::StatusOr<bool> LoadManifestView(const std::string& repo_root, const std::s
   const std::string manifest_path =
       absl::StrCat(repo_root.empty() ? "." : repo_root, "/data/manifest.json");
   if (!FileExists(manifest_path)) return false;
-  absl::StatusOr<JsonValue> manifest = LoadJsonFile(manifest_path);
+  absl::StatusOr<Json> manifest = LoadJsonFile(manifest_path);
   if (!manifest.ok()) return manifest.status();
-  const JsonValue* entries = manifest->Find("scenes");
+  const Json* entries = Member(*manifest, "scenes");
   if (entries == nullptr || !entries->is_array()) {
     return absl::InvalidArgumentError(absl::StrCat(manifest_path, ": no 'scenes' array"));
   }
-  for (const JsonValue& e : entries->items()) {
-    const JsonValue* n = e.Find("name");
-    if (n == nullptr || !n->is_string() || n->string() != name) continue;
-    const JsonValue* cam = e.Find("camera");
+  for (const Json& e : *entries) {
+    const Json* n = Member(e, "name");
+    if (n == nullptr || !n->is_string() || n->get<std::string>() != name) continue;
+    const Json* cam = Member(e, "camera");
     if (cam == nullptr || cam->is_null()) return false;
     absl::StatusOr<View> v =
         ViewFromManifestEntry(e, absl::StrCat(manifest_path, ": scene '", name, "'"));

@@ -14,15 +14,15 @@
 #include <string>
 
 #include "absl/status/statusor.h"
-#include "cc/render/json.h"
 #include "cc/render/view.h"
+#include "nlohmann/json_fwd.hpp"
 
 namespace kdtree {
 
 // The view of one manifest entry (an object with `camera` and `light`);
 // resolution 800 x 800, no ambient occlusion. `up` defaults to 0 1 0 and
 // `fov_deg` to 45 when absent. Errors name `where` and the bad field.
-absl::StatusOr<View> ViewFromManifestEntry(const JsonValue& entry, const std::string& where);
+absl::StatusOr<View> ViewFromManifestEntry(const nlohmann::json& entry, const std::string& where);
 
 struct SceneRef {
   std::string name;

@@ -8,7 +8,9 @@
 #include <string>
 
 #include "absl/strings/str_cat.h"
+#include "cc/render/json.h"
 #include "gtest/gtest.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace {
@@ -28,7 +30,7 @@ void Write(const std::string& path, const std::string& text) {
 }
 
 TEST(ViewFromManifest, CameraAndLight) {
-  absl::StatusOr<JsonValue> e = ParseJson(
+  absl::StatusOr<nlohmann::json> e = ParseJson(
       R"({"name": "x", "camera": {"position": [0, 1, 5], "look_at": [0, 0, 0],
           "up": [0, 1, 0], "fov_deg": 30}, "light": {"position": [1, 2, 3]}})",
       "m");
@@ -43,7 +45,7 @@ TEST(ViewFromManifest, CameraAndLight) {
 }
 
 TEST(ViewFromManifest, NullLightMeansNoLights) {
-  absl::StatusOr<JsonValue> e = ParseJson(
+  absl::StatusOr<nlohmann::json> e = ParseJson(
       R"({"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0]}, "light": null})", "m");
   ASSERT_TRUE(e.ok());
   absl::StatusOr<View> v = ViewFromManifestEntry(*e, "m");
@@ -57,7 +59,7 @@ TEST(ViewFromManifest, BadFieldsAreErrors) {
                            R"({"camera": {"position": [0, 1, 5], "look_at": "x"}})",
                            R"({"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0]}, "light": 3})",
                            R"({"camera": {"position": [0, 0, 0], "look_at": [0, 0, 0]}})"}) {
-    absl::StatusOr<JsonValue> e = ParseJson(text, "m");
+    absl::StatusOr<nlohmann::json> e = ParseJson(text, "m");
     ASSERT_TRUE(e.ok()) << text;
     EXPECT_FALSE(ViewFromManifestEntry(*e, "m").ok()) << text;
   }
@@ -83,6 +85,23 @@ TEST(ResolveScene, IndexAndManifest) {
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.status().message().find("data/fetch.py"), std::string::npos);
   EXPECT_FALSE(ResolveScene(root, "gone").ok());
+}
+
+TEST(ResolveScene, MalformedManifestNamesFileAndLine) {
+  const std::string root = TempRoot() + "3";
+  mkdir(root.c_str(), 0755);
+  mkdir((root + "/data").c_str(), 0755);
+  mkdir((root + "/data/cache").c_str(), 0755);
+  mkdir((root + "/data/cache/scenes").c_str(), 0755);
+  Write(root + "/m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Write(root + "/data/cache/scenes/index.json",
+        absl::StrCat(R"({"scenes": {"m": {"file": ")", root, R"(/m.obj"}}})"));
+  Write(root + "/data/manifest.json", "{\"scenes\": [\n  {\"name\": \"m\",}\n]}\n");
+  absl::StatusOr<SceneRef> ref = ResolveScene(root, "m");
+  ASSERT_FALSE(ref.ok());
+  EXPECT_NE(ref.status().message().find(root + "/data/manifest.json: line 2, column 16: "),
+            std::string::npos)
+      << ref.status();
 }
 
 TEST(ResolveScene, NoManifestLeavesNoView) {

@@ -5,11 +5,11 @@
 #include <thread>
 #include <utility>
 
-#include "absl/strings/str_format.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
+#include "nlohmann/json.hpp"
 
 namespace kdtree {
 namespace robust {
@@ -99,11 +99,15 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
 }
 
 std::string ResultJson(const std::string& case_name, const CheckResult& r) {
-  return absl::StrFormat(
-      "{\"case\": \"%s\", \"preset\": \"%s\", \"mode\": \"%s\", \"rays\": %d, \"hits\": %d, "
-      "\"mismatches\": %d, \"any_hit_mismatches\": %d, \"required\": %s}",
-      case_name, r.preset, IntersectionModeName(r.mode), r.rays, r.hits, r.mismatches,
-      r.any_hit_mismatches, r.informational ? "false" : "true");
+  const nlohmann::ordered_json j = {{"case", case_name},
+                                    {"preset", r.preset},
+                                    {"mode", IntersectionModeName(r.mode)},
+                                    {"rays", r.rays},
+                                    {"hits", r.hits},
+                                    {"mismatches", r.mismatches},
+                                    {"any_hit_mismatches", r.any_hit_mismatches},
+                                    {"required", !r.informational}};
+  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 namespace {

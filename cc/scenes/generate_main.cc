@@ -30,6 +30,7 @@
 #include "cc/scenes/subdivide.h"
 #include "cc/scenes/teapots.h"
 #include "cc/scenes/voxel.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, kind, "", "hairball, voxel, teapots, city, forest, subdivide, refine, plant or courtyard");
 ABSL_FLAG(int64_t, triangles, 0, "target triangle count (0: the generator's default)");
@@ -131,11 +132,14 @@ int Main() {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const AABB b = mesh->Bounds();
-  std::printf(
-      "{\"kind\": \"%s\", \"triangles\": %zu, \"vertices\": %zu, \"bounds\": [[%g, %g, %g], "
-      "[%g, %g, %g]], \"seconds\": %.3f}\n",
-      kind.c_str(), mesh->TriangleCount(), mesh->vertices.size(), b.lo.x, b.lo.y, b.lo.z, b.hi.x,
-      b.hi.y, b.hi.z, seconds);
+  const nlohmann::ordered_json line = {
+      {"kind", kind},
+      {"triangles", mesh->TriangleCount()},
+      {"vertices", mesh->vertices.size()},
+      {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}},
+      {"seconds", seconds}};
+  std::printf("%s\n",
+              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   return 0;
 }
 

@@ -34,6 +34,7 @@
 #include "assimp/scene.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, ply_out, "", "also write the flattened triangles to this binary PLY");
 ABSL_FLAG(std::vector<std::string>, skip_nodes, {},
@@ -169,12 +170,17 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  std::printf(
-      "{\"triangles\": %llu, \"triangles_unique\": %llu, \"lines\": %llu, \"points\": %llu, "
-      "\"meshes\": %u, \"instances\": %llu, \"dropped\": %llu, \"skipped_nodes\": %llu, "
-      "\"bounds\": [[%.9g, %.9g, %.9g], [%.9g, %.9g, %.9g]]}\n",
-      t.triangles, unique, t.lines, t.points, scene->mNumMeshes, t.instances, t.dropped,
-      t.skipped_nodes, t.lo[0],
-      t.lo[1], t.lo[2], t.hi[0], t.hi[1], t.hi[2]);
+  const nlohmann::ordered_json line = {
+      {"triangles", t.triangles},
+      {"triangles_unique", unique},
+      {"lines", t.lines},
+      {"points", t.points},
+      {"meshes", scene->mNumMeshes},
+      {"instances", t.instances},
+      {"dropped", t.dropped},
+      {"skipped_nodes", t.skipped_nodes},
+      {"bounds", {{t.lo[0], t.lo[1], t.lo[2]}, {t.hi[0], t.hi[1], t.hi[2]}}}};
+  std::printf("%s\n",
+              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   return t.triangles > 0 ? 0 : 1;
 }

@@ -15,6 +15,7 @@
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
 #include "cc/scenes/q3_bsp.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, bsp, "", "input .bsp file");
 ABSL_FLAG(std::string, out, "", "output .ply file");
@@ -57,11 +58,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   const kdtree::AABB b = mesh->Bounds();
-  std::printf(
-      "{\"triangles\": %zu, \"vertices\": %zu, \"faces\": %lld, \"polygon_faces\": %lld, "
-      "\"patch_faces\": %lld, \"skipped_faces\": %lld, \"bounds\": [[%g, %g, %g], [%g, %g, %g]]}\n",
-      mesh->TriangleCount(), mesh->vertices.size(), static_cast<long long>(stats.faces),
-      static_cast<long long>(stats.polygon_faces), static_cast<long long>(stats.patch_faces),
-      static_cast<long long>(stats.skipped_faces), b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+  const nlohmann::ordered_json line = {
+      {"triangles", mesh->TriangleCount()},
+      {"vertices", mesh->vertices.size()},
+      {"faces", static_cast<long long>(stats.faces)},
+      {"polygon_faces", static_cast<long long>(stats.polygon_faces)},
+      {"patch_faces", static_cast<long long>(stats.patch_faces)},
+      {"skipped_faces", static_cast<long long>(stats.skipped_faces)},
+      {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}}};
+  std::printf("%s\n",
+              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   return 0;
 }

@@ -18,6 +18,7 @@
 #include "absl/flags/parse.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/spm.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, dir, "", "directory searched recursively for *.spm files");
 
@@ -58,10 +59,15 @@ int Main() {
     vertices += static_cast<long long>(mesh->vertices.size());
   }
   const long long total = static_cast<long long>(files.size());
-  std::printf(
-      "{\"files\": %lld, \"parsed\": %lld, \"failed\": %lld, \"static\": %lld, \"skinned\": %lld, "
-      "\"triangles\": %lld, \"vertices\": %lld}\n",
-      total, parsed, total - parsed, parsed - skinned, skinned, triangles, vertices);
+  const nlohmann::ordered_json line = {{"files", total},
+                                       {"parsed", parsed},
+                                       {"failed", total - parsed},
+                                       {"static", parsed - skinned},
+                                       {"skinned", skinned},
+                                       {"triangles", triangles},
+                                       {"vertices", vertices}};
+  std::printf("%s\n",
+              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   return parsed == total && total > 0 ? 0 : 1;
 }
 

@@ -12,12 +12,11 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
-#include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
 #include "cc/scenes/stk_track.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, track_dir, "", "the track's directory (holding scene.xml)");
 ABSL_FLAG(std::string, data_dir, "", "STK data directory (library/, models/); default: "
@@ -32,15 +31,6 @@ ABSL_FLAG(bool, left_handed, false, "keep the game's left-handed frame (z not ne
 namespace kdtree {
 namespace scenes {
 namespace {
-
-std::string JsonString(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out.push_back('\\');
-    out.push_back(c);
-  }
-  return out + "\"";
-}
 
 int Main() {
   const std::string track_dir = absl::GetFlag(FLAGS_track_dir), out = absl::GetFlag(FLAGS_out);
@@ -68,19 +58,21 @@ int Main() {
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::string skipped;
-  for (const auto& [reason, count] : stats.skipped) {
-    absl::StrAppend(&skipped, skipped.empty() ? "" : ", ", JsonString(reason), ": ", count);
-  }
+  nlohmann::ordered_json skipped = nlohmann::ordered_json::object();
+  for (const auto& [reason, count] : stats.skipped) skipped[reason] = count;
   const AABB b = mesh->Bounds();
-  std::printf(
-      "{\"triangles\": %zu, \"vertices\": %zu, \"placed\": %lld, \"lod_instances\": %lld, "
-      "\"libraries\": %lld, \"models\": %lld, \"skipped\": {%s}, \"bounds\": [[%g, %g, %g], "
-      "[%g, %g, %g]], \"seconds\": %.3f}\n",
-      mesh->TriangleCount(), mesh->vertices.size(), static_cast<long long>(stats.placed),
-      static_cast<long long>(stats.lod_instances), static_cast<long long>(stats.libraries),
-      static_cast<long long>(stats.models), skipped.c_str(), b.lo.x, b.lo.y, b.lo.z, b.hi.x,
-      b.hi.y, b.hi.z, seconds);
+  const nlohmann::ordered_json line = {
+      {"triangles", mesh->TriangleCount()},
+      {"vertices", mesh->vertices.size()},
+      {"placed", static_cast<long long>(stats.placed)},
+      {"lod_instances", static_cast<long long>(stats.lod_instances)},
+      {"libraries", static_cast<long long>(stats.libraries)},
+      {"models", static_cast<long long>(stats.models)},
+      {"skipped", skipped},
+      {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}},
+      {"seconds", seconds}};
+  std::printf("%s\n",
+              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
   return 0;
 }
 

@@ -10,6 +10,7 @@
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/stats.h"
 #include "cc/seed/row18.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, mesh, "", "Suzanne mesh (empty: make it with Blender in --work_dir)");
 ABSL_FLAG(std::string, work_dir, "/tmp", "where Blender writes suzanne.obj");
@@ -43,11 +44,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", tree.status().ToString().c_str());
         return 1;
       }
-      std::printf("{\"column\": \"%s\", \"preset\": \"%s\", \"mode\": \"%s\", \"n_tri\": %zu, "
-                  "\"stats\": %s}\n",
-                  row.column.c_str(), (seed ? row.seed_preset : row.preset).c_str(),
-                  seed ? "seed" : "default", soup->size(),
-                  kdtree::StatsToJson(kdtree::ComputeStats(*tree)).c_str());
+      const nlohmann::ordered_json line = {
+          {"column", row.column},
+          {"preset", seed ? row.seed_preset : row.preset},
+          {"mode", seed ? "seed" : "default"},
+          {"n_tri", soup->size()},
+          {"stats", kdtree::StatsToJson(kdtree::ComputeStats(*tree))}};
+      std::printf("%s\n",
+                  line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
     }
   }
   return 0;

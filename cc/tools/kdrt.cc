@@ -43,6 +43,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/embree/embree_tracer.h"
@@ -50,7 +51,6 @@
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/stats.h"
 #include "cc/render/compare.h"
-#include "cc/render/json.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
 #include "cc/render/png.h"
@@ -262,7 +262,7 @@ absl::Status Run() {
   if (use_embree) {
     progress.Step("comparing with embree");
     const Disagreements d = CompareTracers(recorded.rays, *soup, kd, *b.embree);
-    disagreements = Json::parse(d.ToJson());
+    disagreements = d.ToJson();
     for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
     progress.Phase("embree comparison (embree warm-up)");
     lanes.back().warmup_s = progress.phases()["embree comparison (embree warm-up)"].get<double>();
@@ -317,7 +317,7 @@ absl::Status Run() {
                       {"shadow", TraversalJson(counts.by_kind[1])},
                       {"ao", TraversalJson(counts.by_kind[2])}};
   rec["counting_mismatches"] = counts.result_mismatches;
-  const Json tree_stats = Json::parse(StatsToJson(stats));
+  const Json tree_stats = StatsToJson(stats);
   for (const auto& [key, value] : tree_stats.items()) rec[key] = value;
   for (const auto& [key, value] : {std::pair<const char*, uint64_t>{"P_hit", r.p_hit}, {"P_miss", r.p_miss},
                                    {"S_hit", r.s_hit}, {"S_miss", r.s_miss}, {"AO_hit", r.ao_hit},

@@ -14,14 +14,12 @@
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/status/statusor.h"
-#include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
 #include "cc/geometry/aabb.h"
 #include "cc/geometry/triangle.h"
 #include "cc/io/mesh_loader.h"
 #include "cc/io/soup_cache.h"
-#include "cc/render/json.h"
 #include "cc/tools/paths.h"
+#include "nlohmann/json.hpp"
 
 ABSL_FLAG(std::string, mesh, "", "Mesh file to load (anything assimp reads, or .gz of it).");
 ABSL_FLAG(std::string, cache_dir, "", "Triangle-cache directory; empty = no cache.");
@@ -53,17 +51,17 @@ int Run(const std::vector<char*>& positional) {
     std::fprintf(stderr, "scene_info: warning: %s\n", report.cache_warning.c_str());
   }
   const AABB box = soup->Bounds();
-  std::printf(
-      "%s\n",
-      absl::StrFormat(
-          "{\"scene\": %s, \"mesh\": %s, \"n_tri\": %d, \"skipped_faces\": %d, "
-          "\"dropped_degenerate\": %d, \"dropped_nonfinite\": %d, \"load_s\": %.6f, "
-          "\"from_cache\": %s, \"bounds\": [[%.9g, %.9g, %.9g], [%.9g, %.9g, %.9g]]}",
-          JsonQuote(absl::GetFlag(FLAGS_name)), JsonQuote(mesh), soup->size(),
-          report.skipped_faces, report.dropped_degenerate, report.dropped_nonfinite,
-          report.load_seconds, report.from_cache ? "true" : "false", box.lo.x, box.lo.y,
-          box.lo.z, box.hi.x, box.hi.y, box.hi.z)
-          .c_str());
+  using Json = nlohmann::ordered_json;
+  const Json line = {{"scene", absl::GetFlag(FLAGS_name)},
+                     {"mesh", mesh},
+                     {"n_tri", soup->size()},
+                     {"skipped_faces", report.skipped_faces},
+                     {"dropped_degenerate", report.dropped_degenerate},
+                     {"dropped_nonfinite", report.dropped_nonfinite},
+                     {"load_s", report.load_seconds},
+                     {"from_cache", report.from_cache},
+                     {"bounds", {{box.lo.x, box.lo.y, box.lo.z}, {box.hi.x, box.hi.y, box.hi.z}}}};
+  std::printf("%s\n", line.dump(-1, ' ', false, Json::error_handler_t::replace).c_str());
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 

@@ -2,7 +2,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "cc/render/json.h"
+#include "cc/base/median.h"
 
 namespace kdtree {
 
