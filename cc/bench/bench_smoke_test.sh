@@ -15,28 +15,7 @@ export KDTREE_GIT_COMMIT=0123456789abcdef0123456789abcdef01234567
 
 # A closed octahedron above a ground quad.
 mkdir -p repo/data/cache/scenes
-cat > repo/scene.obj <<'OBJ'
-v 0 1 0
-v 1 0 0
-v 0 0 1
-v -1 0 0
-v 0 0 -1
-v 0 -1 0
-v -4 -1.5 -4
-v 4 -1.5 -4
-v 4 -1.5 4
-v -4 -1.5 4
-f 1 3 2
-f 1 4 3
-f 1 5 4
-f 1 2 5
-f 6 2 3
-f 6 3 4
-f 6 4 5
-f 6 5 2
-f 7 9 8
-f 7 10 9
-OBJ
+cp "$TEST_SRCDIR/$TEST_WORKSPACE/cc/tools/testdata/octahedron.obj" repo/scene.obj
 cat > repo/data/cache/scenes/index.json <<'JSON'
 {"scenes": {"tiny": {"file": "scene.obj", "triangles": 10}}}
 JSON

@@ -6,6 +6,7 @@ another process holds."""
 import fcntl
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import tempfile
@@ -16,28 +17,9 @@ BENCH = os.path.join(os.environ.get("TEST_SRCDIR", ""),
                      os.environ.get("TEST_WORKSPACE", ""),
                      "cc", "robust", "robust_cost_bench")
 
-# A closed octahedron above a ground quad.
-OBJ = """v 0 1 0
-v 1 0 0
-v 0 0 1
-v -1 0 0
-v 0 0 -1
-v 0 -1 0
-v -4 -1.5 -4
-v 4 -1.5 -4
-v 4 -1.5 4
-v -4 -1.5 4
-f 1 3 2
-f 1 4 3
-f 1 5 4
-f 1 2 5
-f 6 2 3
-f 6 3 4
-f 6 4 5
-f 6 5 2
-f 7 9 8
-f 7 10 9
-"""
+# A closed octahedron above a ground quad (shared with kdrt's and the benches' tests).
+OBJ = os.path.join(os.environ.get("TEST_SRCDIR", ""), os.environ.get("TEST_WORKSPACE", ""),
+                   "cc", "tools", "testdata", "octahedron.obj")
 
 
 class CostBenchTest(unittest.TestCase):
@@ -45,8 +27,7 @@ class CostBenchTest(unittest.TestCase):
         self.tmp = tempfile.TemporaryDirectory(dir=os.environ.get("TEST_TMPDIR"))
         self.dir = self.tmp.name
         self.mesh = os.path.join(self.dir, "scene.obj")
-        with open(self.mesh, "w") as f:
-            f.write(OBJ)
+        shutil.copy(OBJ, self.mesh)
         self.lock = os.path.join(self.dir, "timing.lock")
         self.env = dict(os.environ, KDTREE_TIMING_LOCK=self.lock,
                         KDTREE_SOURCE_TREE="fixture-tree",

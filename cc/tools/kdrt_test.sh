@@ -12,28 +12,7 @@ cd "$T"
 export KDTREE_TIMING_LOCK="$T/timing.lock"
 
 # A closed octahedron above a ground quad.
-cat > scene.obj <<'OBJ'
-v 0 1 0
-v 1 0 0
-v 0 0 1
-v -1 0 0
-v 0 0 -1
-v 0 -1 0
-v -4 -1.5 -4
-v 4 -1.5 -4
-v 4 -1.5 4
-v -4 -1.5 4
-f 1 3 2
-f 1 4 3
-f 1 5 4
-f 1 2 5
-f 6 2 3
-f 6 3 4
-f 6 4 5
-f 6 5 2
-f 7 9 8
-f 7 10 9
-OBJ
+cp "$TEST_SRCDIR/$TEST_WORKSPACE/cc/tools/testdata/octahedron.obj" scene.obj
 cat > lit.view <<'VIEW'
 camera { position 0.5 2 6 look_at 0 -0.5 0 fov 45 }
 resolution 64 48
