@@ -2,11 +2,9 @@
 ranges overlap, or with a single run, is within noise."""
 
 import os
-import tempfile
 import unittest
 
 from analysis import claims
-from analysis import context
 from analysis import kdtree_results as kr
 from analysis import testdata
 
@@ -47,17 +45,7 @@ class VerdictTest(unittest.TestCase):
         self.assertEqual(claims.verdict(agree=0, decided=0, noise=0), "not tested")
 
 
-class ClaimsTest(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        results, manifest = testdata.kdtree_fixture(self.tmp.name)
-        self.out = os.path.join(self.tmp.name, "out")
-        os.makedirs(self.out)
-        self.ctx = context.Context(results, manifest, self.out)
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
+class ClaimsTest(testdata.KdtreeFixtureTest):
     def evaluate(self):
         df = kr.frame(self.ctx.results(kr.KDTREE_FILE), self.ctx.manifest)
         return {c[0][0]: c[1:] for c in claims.evaluate(df)}

@@ -2,10 +2,8 @@
 kd/Embree ratio is the record's paired median over its rounds."""
 
 import os
-import tempfile
 import unittest
 
-from analysis import context
 from analysis import embree
 from analysis import embree_build
 from analysis import kdtree_results as kr
@@ -14,21 +12,7 @@ from analysis import provenance
 from analysis import testdata
 
 
-class Fixture(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        results, manifest = testdata.kdtree_fixture(self.tmp.name)
-        self.out = os.path.join(self.tmp.name, "out")
-        os.makedirs(self.out)
-        self.ctx = context.Context(results, manifest, self.out)
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def read(self, name):
-        with open(os.path.join(self.out, name)) as f:
-            return f.read()
-
+class Fixture(testdata.KdtreeFixtureTest):
     def append(self, scene, variant, emb, **over):
         testdata.write_kdtree(self.ctx.results_dir, [
             testdata.kdrt_record(scene, variant, embree=emb, **over)])

@@ -2,7 +2,6 @@
 (analysis/testdata.py), and the provenance checks they apply."""
 
 import os
-import tempfile
 import unittest
 
 from analysis import claims
@@ -15,20 +14,7 @@ from analysis import seed_tables
 from analysis import testdata
 
 
-class KdtreeAnalysisTest(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        results, manifest = testdata.kdtree_fixture(self.tmp.name)
-        self.out = os.path.join(self.tmp.name, "out")
-        os.makedirs(self.out)
-        self.ctx = context.Context(results, manifest, self.out)
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def read(self, name):
-        with open(os.path.join(self.out, name)) as f:
-            return f.read()
+class KdtreeAnalysisTest(testdata.KdtreeFixtureTest):
 
     def append(self, *records):
         testdata.write_kdtree(self.ctx.results_dir, records)

@@ -6,7 +6,10 @@ These are made-up numbers for tests only; they are never results.
 import json
 import os
 import statistics
+import tempfile
+import unittest
 
+from analysis import context
 from analysis import kdtree_results as kr
 
 MANIFEST = {"scenes": [
@@ -276,3 +279,22 @@ def kdtree_fixture(root):
         json.dump({"scenes": [{"name": "gamma"}, {"name": "alpha"},
                               {"name": "beta"}]}, f)
     return results, manifest
+
+
+class KdtreeFixtureTest(unittest.TestCase):
+    """A test case on kdtree_fixture's results: self.ctx reads them and writes
+    to self.out; read(name) returns a file written there."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        results, manifest = kdtree_fixture(self.tmp.name)
+        self.out = os.path.join(self.tmp.name, "out")
+        os.makedirs(self.out)
+        self.ctx = context.Context(results, manifest, self.out)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def read(self, name):
+        with open(os.path.join(self.out, name)) as f:
+            return f.read()
