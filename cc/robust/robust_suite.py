@@ -38,14 +38,13 @@ after the suite, never beside it (its rounds are timed).
 
 "provenance" of the suite's records (the C++ case binaries do not collect it):
 commit, dirty and source_tree of the checkout (experiments/provenance.py's
-code_identity, or cc/base/source_id.sh), compilation_mode (--compilation_mode,
+code_identity), compilation_mode (--compilation_mode,
 else guessed from --bin_dir's bazel-out/<cpu>-<mode>/ path), cpu_model, cores,
 timestamp_utc and collected_by.
 """
 
 import argparse
 import concurrent.futures
-import importlib.util
 import json
 import os
 import re
@@ -76,37 +75,13 @@ COST_TARGET = "//cc/robust:robust_cost_bench"
 # --- provenance --------------------------------------------------------------
 
 def code_identity(repo_root="."):
-    """{"commit", "dirty", "source_tree"} of the checkout at repo_root:
-    experiments/provenance.py's code_identity when that file is there, else
-    cc/base/source_id.sh run directly; None values when unknown."""
+    """{"commit", "dirty", "source_tree"} of the checkout at repo_root, by
+    experiments/provenance.py (the one implementation: it honours the identity
+    reproduce.sh pinned, $KDTREE_SOURCE_ID); None values when unknown."""
     root = os.path.abspath(repo_root)
-    module = os.path.join(root, "experiments", "provenance.py")
-    if os.path.exists(module):
-        spec = importlib.util.spec_from_file_location("_kdtree_provenance",
-                                                      module)
-        mod = importlib.util.module_from_spec(spec)
-        try:
-            spec.loader.exec_module(mod)
-            return dict(mod.code_identity(root))
-        except Exception as e:  # pylint: disable=broad-except
-            print("robust_suite: %s: %s; running source_id.sh" % (module, e),
-                  file=sys.stderr)
-    ident = {"commit": None, "dirty": False, "source_tree": None}
-    try:
-        out = subprocess.run(
-            ["sh", os.path.join(root, "cc", "base", "source_id.sh"), root],
-            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-            universal_newlines=True, check=True).stdout.split()
-        if len(out) == 3:
-            ident = {"commit": out[0], "dirty": out[1] == "true",
-                     "source_tree": out[2]}
-    except (OSError, subprocess.CalledProcessError):
-        pass
-    for key, env in (("commit", "KDTREE_GIT_COMMIT"),
-                     ("source_tree", "KDTREE_SOURCE_TREE")):
-        if os.environ.get(env):
-            ident[key] = os.environ[env]
-    return ident
+    sys.path.insert(0, os.path.join(root, "experiments"))
+    import provenance  # pylint: disable=import-outside-toplevel
+    return dict(provenance.code_identity(root))
 
 
 def guess_compilation_mode(bin_dir):
