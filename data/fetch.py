@@ -73,7 +73,7 @@ TMP = CACHE / "tmp"
 INDEX = SCENES / "index.json"
 PROFILES = ("test", "quick", "standard", "full")
 
-# Blender's own monkey as the report used it (../shared/notes/seed-facts.md):
+# Blender's own monkey as the report used it (//cc/seed:row18_test meets it):
 # quads, triangulated by the loader (assimp) into 968 triangles.
 SUZANNE_EXPR = (
     "import bpy; bpy.ops.object.select_all(action='SELECT'); bpy.ops.object.delete(); "

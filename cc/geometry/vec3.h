@@ -2,7 +2,7 @@
 //
 // float32 on purpose: the report's numbers were produced in float32 and the
 // seed-compatible mode reproduces them bit for bit (no FMA contraction; see
-// .bazelrc and ../shared/notes/seed-facts.md).
+// .bazelrc, and the seed-compatible mode's rules in README.md, "The kd-tree").
 #ifndef KDTREE_CC_GEOMETRY_VEC3_H_
 #define KDTREE_CC_GEOMETRY_VEC3_H_
 

@@ -108,7 +108,9 @@ const std::vector<std::string>& PresetNames();
 // The preset's configuration; NotFound for an unknown name.
 // "pruning" is built on binning-8-driving as the report's text says; the
 // seed-compatible variant "pruning-seed" is built on binning-32 (all axes), as
-// the report's numbers show it actually was (../shared/notes/seed-facts.md).
+// the report's numbers show it actually was (its N_I equals Binning 32's in
+// the report's Table 7, and row 18's N_PR 9,808 comes out only that way;
+// //cc/seed:row18_test).
 absl::StatusOr<Config> Preset(const std::string& name);
 
 // Presets beyond the report (accepted by Preset(); not among PresetNames()):

@@ -7,7 +7,7 @@
 #   experiments/slurm/cluster.sh stop DIR    # stops every daemon it started, by PID
 #
 # Needs root and Debian's slurm-wlm + munge (experiments/setup.sh --with-slurm).
-# Facts behind the configuration: ../shared/notes/distributed.md.
+# The reasons for each setting are in the comments beside it below.
 set -euo pipefail
 
 cmd="${1:-}"
