@@ -109,7 +109,8 @@ def run_the_matrix(kdrt, directory):
     mesh, view = write_scene(directory)
     matrix = run_matrix.load_matrix()
     settings = {"repeats": REPEATS, "threads": 1, "embree": "medium",
-                "fast_render": matrix["fast_render_variants"], "source_tree": TREE}
+                "fast_render": matrix["fast_render_variants"],
+                "embree_timed": matrix["embree_timed_variants"], "source_tree": TREE}
     pending = [(SCENE, mesh, v) for v in matrix["variants"] + matrix["beyond_variants"]]
     out = os.path.join(directory, "out")
     os.makedirs(os.path.join(out, "results"))
@@ -138,6 +139,8 @@ class KdrtRecordsTest(unittest.TestCase):
         with open(cls.manifest, "w") as f:
             json.dump({"scenes": [{"name": SCENE}]}, f)
         cls.schema = record_schema.load()
+        cls.settings = {"embree": "medium",
+                        "embree_timed": run_matrix.load_matrix()["embree_timed_variants"]}
 
     def setUp(self):
         self.out = tempfile.mkdtemp(dir=self.tmp.name)
@@ -166,7 +169,9 @@ class KdrtRecordsTest(unittest.TestCase):
         for rec in self.records.values():
             added = set(rec) - set(self.schema["kdrt"])
             self.assertEqual(added, set(self.schema["run_matrix"]))
-            self.assertEqual(rec["job"], [SCENE, rec["preset"], REPEATS, 1, "medium", TREE])
+            self.assertEqual(rec["job"], [SCENE, rec["preset"], REPEATS, 1,
+                                      run_matrix.embree_mode(rec["preset"], self.settings),
+                                      TREE])
             self.assertEqual(rec["provenance"]["source_tree"], TREE)
             self.assertEqual(rec["provenance"]["commit"], COMMIT)
 
@@ -220,19 +225,31 @@ class KdrtRecordsTest(unittest.TestCase):
         macros = claims.generate(self.ctx)
         self.assertEqual(macros["ClaimsTotal"][0], str(len(claims.CLAIMS)))
 
+    def test_embree_is_timed_on_the_listed_variants_and_compared_on_all(self):
+        timed = set(run_matrix.load_matrix()["embree_timed_variants"])
+        for v, rec in self.records.items():
+            e = rec["embree"]
+            self.assertEqual(e["timed"], v in timed, v)
+            self.assertEqual(len(e["T_R_runs"]), REPEATS if v in timed else 0, v)
+            self.assertEqual(rec["job"][4], "medium" if v in timed else "medium untimed")
+            self.assertIsNotNone(rec["disagreements"], v)
+            if v not in timed:
+                self.assertIsNone(rec["perf_ratio_kd_over_embree"], v)
+                self.assertNotIn("paired_ratio", rec["fast_render"] or {}, v)
+
     def test_embree_tables_use_the_paired_ratios(self):
         nine = {v: self.records[v] for v in kr.VARIANTS}
         best = min(nine, key=lambda v: nine[v]["T_R"])
         row = embree.rows(self.df)[0]
         self.assertEqual(row["best_variant"], best)
-        self.assertEqual(row["ratio_best"], nine[best]["embree"]["paired_ratio"])
-        self.assertEqual(row["runs_best"], nine[best]["embree"]["paired_ratio_runs"])
         self.assertEqual(row["ratio_final"],
                          nine[embree.FINAL]["perf_ratio_kd_over_embree"])
+        self.assertEqual(row["runs_final"],
+                         nine[embree.FINAL]["embree"]["paired_ratio_runs"])
         beyond = self.records[embree.BEYOND]
         self.assertEqual(row["ratio_fast"], beyond["fast_render"]["paired_ratio"])
         self.assertEqual(row["kd_wrong"], sum(r["disagreements"]["reference_wrong"]
-                                              for r in nine.values()))
+                                              for r in self.records.values()))
         self.assertEqual(embree.generate(self.ctx)["EmbreeScenes"][0], "1")
         binned = embree_build.rows(self.df)[0]
         self.assertEqual(binned["T_B"], self.records[embree_build.FAST]["T_B"])

@@ -148,7 +148,7 @@ def embree(t_r=0.2, ratios=None, t_b=0.1, **over):
     """kdrt's "embree" object: Embree's warm-up apart, then its timed rounds
     (paired_ratio_runs: Embree T_R / kd T_R per round; default one round)."""
     ratios = [1.0] if ratios is None else list(ratios)
-    emb = {"quality": "medium", "T_B": t_b, "T_B_runs": [t_b] * len(ratios),
+    emb = {"quality": "medium", "timed": True, "T_B": t_b, "T_B_runs": [t_b] * len(ratios),
            "T_B_warmup": t_b, "T_R": t_r, "T_R_runs": [t_r] * len(ratios),
            "T_R_warmup": t_r, "perf_krays": 640.0 / t_r,
            "all_rays_per_s": 940000 / t_r, "P_hit": 300, "P_miss": 340,
@@ -159,6 +159,19 @@ def embree(t_r=0.2, ratios=None, t_b=0.1, **over):
            "disagreements": 0, "paired_ratio_runs": ratios,
            "paired_ratio": statistics.median(ratios),
            "perf_ratio_kd_over_embree": statistics.median(ratios)}
+    emb.update(over)
+    return emb
+
+
+def embree_untimed(**over):
+    """kdrt's "embree" object with --noembree_rounds: built once, untimed,
+    for the comparison alone."""
+    emb = embree()
+    emb.update({"timed": False, "T_B": None, "T_B_runs": [], "T_R": None,
+                "T_R_runs": [], "T_R_warmup": None, "perf_krays": None,
+                "all_rays_per_s": None, "P_hit": None, "P_miss": None,
+                "S_hit": None, "S_miss": None, "effects": None,
+                "paired_ratio": None, "perf_ratio_kd_over_embree": None})
     emb.update(over)
     return emb
 

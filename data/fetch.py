@@ -246,19 +246,23 @@ class Tools:
 
     def __init__(self, mode):
         self.mode = mode
+        # opt means the tools' configuration (.bazelrc's --config=opt), which
+        # reproduce.sh builds next: plain -c opt shares its output directory
+        # with other flags, so each would rebuild everything after the other.
+        self.flags = ["--config=opt"] if mode == "opt" else ["-c", mode]
         self.bin = None
         self.error = None
 
     def ensure(self):
         if self.bin is None and self.error is None:
             log(f"building //cc/scenes:generate, :mesh_info, :stk_track and :q3_bsp_tool "
-                f"(bazel -c {self.mode}) ...")
+                f"(bazel {' '.join(self.flags)}) ...")
             try:
-                run(["bazel", "build", "-c", self.mode, "//cc/scenes:generate",
+                run(["bazel", "build", *self.flags, "//cc/scenes:generate",
                      "//cc/scenes:mesh_info", "//cc/scenes:stk_track",
                      "//cc/scenes:q3_bsp_tool"], cwd=REPO,
                     what="bazel build")
-                out = run(["bazel", "info", "-c", self.mode, "bazel-bin"], cwd=REPO,
+                out = run(["bazel", "info", *self.flags, "bazel-bin"], cwd=REPO,
                           what="bazel info")
                 self.bin = Path(out.strip().splitlines()[-1]) / "cc" / "scenes"
             except SceneError as e:
@@ -689,8 +693,9 @@ def main(argv=None):
                         help="make the selected scenes again even if cached (e.g. after a "
                              "change to cc/scenes; downloads stay cached)")
     parser.add_argument("--compilation-mode", choices=("opt", "fastbuild"), default=None,
-                        help="bazel -c for the generators (default: fastbuild for the test "
-                             "profile, which CI's bazel test reuses; opt otherwise). "
+                        help="how the generators are built (default: fastbuild for the test "
+                             "profile, which CI's bazel test reuses; opt, meaning "
+                             "--config=opt like the tools, otherwise). "
                              "Output bytes are the same either way.")
     args = parser.parse_args(argv)
 

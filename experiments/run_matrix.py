@@ -69,7 +69,24 @@ def job_key(scene, variant, settings):
     profile's settings and the code (settings["source_tree"], the checkout's
     identity when the plan was made)."""
     return (scene, variant, int(settings["repeats"]), int(settings["threads"]),
-            settings["embree"], settings.get("source_tree"))
+            embree_mode(variant, settings), settings.get("source_tree"))
+
+
+def embree_timed(variant, settings):
+    """Whether Embree runs in the variant's timed rounds: on the variants of
+    matrix.json's embree_timed_variants (all when the list is absent); on
+    the others it is built once, untimed, to compare every ray."""
+    timed = settings.get("embree_timed")
+    return timed is None or variant in timed
+
+
+def embree_mode(variant, settings):
+    """The profile's Embree setting as the job runs it: "off", the quality,
+    or the quality and " untimed" (comparison only)."""
+    mode = settings["embree"]
+    if mode == "off" or embree_timed(variant, settings):
+        return mode
+    return mode + " untimed"
 
 
 def done_keys(results_path):
@@ -109,6 +126,8 @@ def kdrt_command(kdrt, scene, variant, settings, image=None):
            "--repeats", str(settings["repeats"]),
            "--threads", str(settings["threads"]),
            "--embree", settings["embree"]]
+    if settings["embree"] != "off" and not embree_timed(variant, settings):
+        cmd += ["--noembree_rounds"]
     if settings.get("repeat_budget_s"):
         cmd += ["--repeat_budget_s", str(settings["repeat_budget_s"])]
     if variant in settings.get("fast_render", []):
@@ -325,6 +344,7 @@ def main(argv=None):
         return 2
     settings = dict(matrix["profiles"][args.profile])
     settings["fast_render"] = matrix.get("fast_render_variants", [])
+    settings["embree_timed"] = matrix.get("embree_timed_variants")
     if args.repeats:
         settings["repeats"] = args.repeats
     if args.embree:

@@ -127,6 +127,20 @@ class RunMatrixTest(unittest.TestCase):
         self.assertNotIn("--fast_render", run_matrix.kdrt_command("k", "a", "pruning", s))
         self.assertIn("sah-packet", run_matrix.load_matrix()["fast_render_variants"])
 
+    def test_embree_timed_only_on_the_listed_variants(self):
+        s = {"repeats": 1, "threads": 1, "embree": "medium",
+             "embree_timed": ["clipping-pruning"], "source_tree": "t"}
+        timed = run_matrix.kdrt_command("k", "a", "clipping-pruning", s)
+        untimed = run_matrix.kdrt_command("k", "a", "pruning", s)
+        self.assertNotIn("--noembree_rounds", timed)
+        self.assertIn("--noembree_rounds", untimed)
+        # Not the same job: the key says which.
+        self.assertEqual(run_matrix.job_key("a", "pruning", s)[4], "medium untimed")
+        self.assertEqual(run_matrix.job_key("a", "clipping-pruning", s)[4], "medium")
+        s["embree"] = "off"
+        self.assertNotIn("--noembree_rounds", run_matrix.kdrt_command("k", "a", "pruning", s))
+        self.assertEqual(run_matrix.job_key("a", "pruning", s)[4], "off")
+
     def test_accuracy_step_records_knob_and_failure(self):
         out = os.path.join(self.tmp.name, "out")
         os.makedirs(out)

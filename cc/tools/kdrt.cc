@@ -17,7 +17,8 @@
 // (traversal_counts.h) and with Embree for disagreements (compare.h);
 // optionally dump the rays; then time the renders in `repeats` rounds
 // alternating the tracers (T_R = median; Embree's time over the kd-tree's,
-// per round, then the median: perf_ratio_kd_over_embree). The record carries
+// per round, then the median: perf_ratio_kd_over_embree). With
+// --noembree_rounds Embree is built once, untimed, only for the comparison. The record carries
 // the provenance of its numbers (cc/base/provenance.h). Prints the record on
 // stdout (one JSON line), writes the image to --image and appends the record
 // to --record when given. Exit code 1 on any error.
@@ -59,6 +60,7 @@
 #include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
+#include "cc/tools/kdrt_record.h"
 #include "cc/tools/paths.h"
 #include "cc/tools/progress.h"
 #include "cc/tools/timed_build.h"
@@ -89,6 +91,9 @@ ABSL_FLAG(double, repeat_budget_s, 0,
           "(at least one run; 0 = always --repeats runs). Every run is recorded.");
 ABSL_FLAG(std::string, dump_rays, "", "Write every ray and its kd-tree result here (cc/render/ray_dump.h).");
 ABSL_FLAG(std::string, embree, "off", "off | low | medium | high: also build and render with Embree.");
+ABSL_FLAG(bool, embree_rounds, true,
+          "With --embree: also time Embree's builds and renders in the rounds, paired with the "
+          "kd-tree's (false: Embree is built once, untimed, only to compare every ray).");
 ABSL_FLAG(bool, fast_render, false,
           "Also time the renderer's fastest mode (primary and shadow rays in packets of 2x2 "
           "pixels, shadow rays leaving their origin triangle untested): record field "
@@ -105,12 +110,6 @@ std::string MeshStem(const std::string& path) {
   return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
 }
 
-uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ull;
-  return h;
-}
-
 using Json = nlohmann::ordered_json;
 
 // Creates the file's directory, then writes it with `write`.
@@ -122,22 +121,6 @@ absl::Status WriteFile(const std::string& path, const std::function<absl::Status
   return write(path);
 }
 
-Json TraversalJson(const TraversalCounters& c) {
-  const double n = c.rays ? static_cast<double>(c.rays) : 1.0;
-  return {{"rays", c.rays}, {"N_IT", c.triangle_tests / n}, {"N_TR", c.inner_visits / n},
-          {"leaves", c.leaf_visits / n}};
-}
-
-// Per-ray figures of a timed render: T_R and its runs, perf (the report's
-// krays/s of primary rays per second of T_R) and every ray per second.
-void AddRenderTimes(const Lane& lane, double pixels, Json* j) {
-  const double t_r = Median(lane.timed.t_r);
-  (*j)["T_R"] = t_r;
-  (*j)["T_R_runs"] = lane.timed.t_r;
-  (*j)["T_R_warmup"] = lane.warmup_s;
-  (*j)["perf_krays"] = pixels / t_r / 1000.0;
-  (*j)["all_rays_per_s"] = lane.last.total_rays() / t_r;
-}
 
 // The configuration's fields as the record shows them.
 Json ConfigJson(const Config& c) {
@@ -192,6 +175,7 @@ absl::Status Run() {
   const std::string embree_flag = absl::GetFlag(FLAGS_embree);
   absl::StatusOr<EmbreeQuality> quality = ParseEmbreeQuality(embree_flag);
   const bool use_embree = embree_flag != "off" && embree_flag != "";
+  const bool embree_timed = use_embree && absl::GetFlag(FLAGS_embree_rounds);
   if (use_embree && !quality.ok()) return quality.status();
   EmbreeOptions eo;
   if (use_embree) eo.quality = *quality;
@@ -223,7 +207,7 @@ absl::Status Run() {
   TimedBuilds b;
   const auto step = [&progress](const std::string& what) { progress.Step(what); };
   absl::Status st =
-      TimeBuilds(*soup, rc->config, use_embree ? &eo : nullptr, repeats, budget_s, &lock, step, &b);
+      TimeBuilds(*soup, rc->config, use_embree ? &eo : nullptr, embree_timed, repeats, budget_s, &lock, step, &b);
   if (!st.ok()) return st;
   progress.Phase("builds");
   const KdTree& tree = *b.tree;
@@ -249,7 +233,7 @@ absl::Status Run() {
     fo.skip_origin = true;
     lanes.push_back({"kd-tree fast", &kd, fo});
   }
-  if (use_embree) lanes.push_back({"embree", b.embree.get(), ropt});
+  if (embree_timed) lanes.push_back({"embree", b.embree.get(), ropt});
   progress.Phase("stats", "recording rays");
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
@@ -265,7 +249,7 @@ absl::Status Run() {
     disagreements = d.ToJson();
     for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
     progress.Phase("embree comparison (embree warm-up)");
-    lanes.back().warmup_s = progress.phases()["embree comparison (embree warm-up)"].get<double>();
+    if (embree_timed) lanes.back().warmup_s = progress.phases()["embree comparison (embree warm-up)"].get<double>();
   }
   if (!absl::GetFlag(FLAGS_dump_rays).empty()) {
     progress.Step("writing ray dump");
@@ -275,7 +259,7 @@ absl::Status Run() {
     progress.Phase("ray dump");
   }
   recorded.rays = std::vector<RayRecord>();
-  for (size_t i = 0; i + (use_embree ? 1 : 0) < lanes.size(); ++i) lanes[i].last = recorded;  // to reproduce
+  for (size_t i = 0; i + (embree_timed ? 1 : 0) < lanes.size(); ++i) lanes[i].last = recorded;  // to reproduce
   recorded = RenderResult();
   const Lane& kl = lanes.front();
   progress.Step("waiting for the timing lock");
@@ -337,31 +321,13 @@ absl::Status Run() {
                           {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)}};
   }
   if (use_embree) {
-    const Lane& el = lanes.back();
-    const std::vector<double> paired = PairedRatios(el.timed.t_r, kl.timed.t_r);
-    Json e = {{"quality", EmbreeQualityName(*quality)}, {"T_B", Median(b.embree_runs)},
-              {"T_B_runs", b.embree_runs}, {"T_B_warmup", b.embree_warmup}};
-    AddRenderTimes(el, pixels, &e);
-    const RenderResult& er = el.last;
-    for (const auto& [key, value] : {std::pair<const char*, uint64_t>{"P_hit", er.p_hit}, {"P_miss", er.p_miss},
-                                     {"S_hit", er.s_hit}, {"S_miss", er.s_miss}}) {
-      e[key] = value;
-    }
-    e["effects"] = EffectsJson(el);
-    for (const char* k : {"grazing", "at_origin", "t_guard", "other"}) {
-      e[absl::StrCat("disagreements_", k)] = disagreements[k];
-    }
-    e["disagreements"] = disagreements["total"];
-    e["paired_ratio_runs"] = paired;
-    e["paired_ratio"] = Median(paired);
-    e["perf_ratio_kd_over_embree"] = Median(paired);
-    rec["perf_ratio_kd_over_embree"] = Median(paired);
-    if (fast) {
-      const std::vector<double> fp = PairedRatios(el.timed.t_r, lanes[1].timed.t_r);
+    rec["embree"] = EmbreeJson(*quality, b, disagreements, embree_timed ? &lanes.back() : nullptr, kl, pixels);
+    rec["perf_ratio_kd_over_embree"] = rec["embree"]["paired_ratio"];
+    if (fast && embree_timed) {
+      const std::vector<double> fp = PairedRatios(lanes.back().timed.t_r, lanes[1].timed.t_r);
       rec["fast_render"]["paired_ratio_runs"] = fp;
       rec["fast_render"]["paired_ratio"] = Median(fp);
     }
-    rec["embree"] = std::move(e);
   }
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();

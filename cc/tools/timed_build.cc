@@ -23,7 +23,7 @@ absl::StatusOr<double> BuildEmbree(const TriangleSoup& soup, const EmbreeOptions
 }  // namespace
 
 absl::Status TimeBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
-                        int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b) {
+                        bool embree_rounds, int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b) {
   if (step) step("warm-up builds");
   absl::StatusOr<double> s = BuildKd(soup, config, b);
   if (!s.ok()) return s.status();
@@ -40,7 +40,7 @@ absl::Status TimeBuilds(const TriangleSoup& soup, const Config& config, const Em
     if (!(s = BuildKd(soup, config, b)).ok()) return s.status();
     b->kd_runs.push_back(*s);
     rounds.push_back(*s);
-    if (embree == nullptr) continue;
+    if (embree == nullptr || !embree_rounds) continue;
     if (!(s = BuildEmbree(soup, *embree, b)).ok()) return s.status();
     b->embree_runs.push_back(*s);
     rounds.back() += *s;

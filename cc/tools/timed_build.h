@@ -24,10 +24,12 @@ struct TimedBuilds {
   std::vector<double> kd_runs, embree_runs;                       // the timed rounds
 };
 
-// `embree` null: the kd-tree alone. Rounds repeat under MoreRuns(round
-// totals, repeats, budget_s). Acquires `lock` for the rounds and releases it.
+// `embree` null: the kd-tree alone; `embree_rounds` false: Embree built once,
+// untimed (its warm-up; b->embree_runs stays empty). Rounds repeat under
+// MoreRuns(round totals, repeats, budget_s). Acquires `lock` for the rounds
+// and releases it.
 absl::Status TimeBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
-                        int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b);
+                        bool embree_rounds, int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b);
 
 }  // namespace kdtree
 
