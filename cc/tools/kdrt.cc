@@ -6,19 +6,19 @@
 //       --repeats=3 --embree=medium --image=/tmp/bunny.png --record=/tmp/kdrt.jsonl
 //
 // Steps (timing method: timed_render.h; timed steps alone under the
-// machine-wide TimingLock, cc/base/timing_lock.h): load the mesh (through the
-// soup cache); build the kd-tree and, with --embree, Embree once untimed
-// (T_B_warmup), then in `repeats` timed rounds (T_B = median;
-// --repeat_budget_s caps the rounds, at least one); render each tracer once
-// untimed (T_R_warmup): the kd-tree on the non-counting fast path
-// (renderer.h), optionally (--fast_render) the renderer's packets with origin
-// skipping (same image), optionally Embree; render once more recording every
-// ray and replay them with the counting traversal for N_IT / N_TR
-// (traversal_counts.h) and with Embree for disagreements (compare.h);
-// optionally dump the rays; then time the renders in `repeats` rounds
-// alternating the tracers (T_R = median; Embree's time over the kd-tree's,
-// per round, then the median: perf_ratio_kd_over_embree). With
-// --noembree_rounds Embree is built once, untimed, only for the comparison. The record carries
+// machine-wide TimingLock, cc/base/timing_lock.h). Untimed, with the lock
+// shared: load the mesh (through the soup cache); build the kd-tree and, with
+// --embree, Embree once (T_B_warmup); render the frame recording every ray
+// (the kd-tree's render warm-up, T_R_warmup), replay the rays with the
+// counting traversal for N_IT / N_TR (traversal_counts.h) and with Embree
+// for disagreements (compare.h; Embree's warm-up); optionally dump the rays.
+// Then timed, alone under the lock: `repeats` rounds of renders alternating
+// the tracers (the kd-tree; with --fast_render the renderer's packets with
+// origin skipping, held to the same image; Embree) on the warm trees (T_R =
+// median; Embree's time over the kd-tree's, per round, then the median:
+// perf_ratio_kd_over_embree), then `repeats` rounds of builds (T_B = median);
+// --repeat_budget_s caps the rounds, at least one. With --noembree_rounds
+// Embree is built once, untimed, only for the comparison. The record carries
 // the provenance of its numbers (cc/base/provenance.h). Prints the record on
 // stdout (one JSON line), writes the image to --image and appends the record
 // to --record when given. Exit code 1 on any error.
@@ -203,13 +203,16 @@ absl::Status Run() {
   }
 
   progress.Phase("load");
-  // Builds (warm-up, then timed rounds under the lock).
+  // Everything untimed first, then the timed rounds in one stretch under the
+  // lock, so that two processes' untimed work overlaps: warm-up builds, the
+  // renders' warm-ups (below), then timed renders on the warm trees and last
+  // the timed builds (which free the warm trees first).
+  progress.Step("warm-up builds");
   TimedBuilds b;
   const auto step = [&progress](const std::string& what) { progress.Step(what); };
-  absl::Status st =
-      TimeBuilds(*soup, rc->config, use_embree ? &eo : nullptr, embree_timed, repeats, budget_s, &lock, step, &b);
+  absl::Status st = WarmUpBuilds(*soup, rc->config, use_embree ? &eo : nullptr, &b);
   if (!st.ok()) return st;
-  progress.Phase("builds");
+  progress.Phase("warm-up builds");
   const KdTree& tree = *b.tree;
   const TreeStats stats = ComputeStats(tree);
   const KdTreeTracer kd(tree);
@@ -264,10 +267,14 @@ absl::Status Run() {
   const Lane& kl = lanes.front();
   progress.Step("waiting for the timing lock");
   if (!(st = lock.Acquire()).ok()) return st;
-  st = TimeRounds(*soup, view, repeats, budget_s, &lanes, step);
+  progress.Phase("waiting for the timing lock");
+  if (!(st = TimeRounds(*soup, view, repeats, budget_s, &lanes, step)).ok()) return st;
+  progress.Phase("timed renders");
+  // The lanes' tracers (the warm trees) are freed by the timed builds.
+  st = TimeBuildRounds(*soup, rc->config, embree_timed ? &eo : nullptr, repeats, budget_s, step, &b);
   lock.Release();
   if (!st.ok()) return st;
-  progress.Phase("timed renders");
+  progress.Phase("timed builds");
   progress.Done();
 
   // Image and record.
@@ -286,8 +293,9 @@ absl::Status Run() {
               {"env", rc->config.ToEnvironment()}, {"view_source", view_source}, {"view", ViewToText(view)},
               {"width", view.width}, {"height", view.height}, {"lights", view.lights.size()},
               {"threads", threads}, {"repeats", repeats}, {"repeat_budget_s", budget_s}};
-  rec["timing"] = {{"method", "warm-up excluded (kd-tree: the recording render; Embree: the comparison pass), then rounds "
-                              "alternating the tracers; ratios paired per round"},
+  rec["timing"] = {{"method", "untimed warm-ups first (a build of each tracer; renders: the kd-tree's recording render, "
+                              "Embree's comparison pass), then alone under the lock rounds alternating the tracers, "
+                              "renders then builds; ratios paired per round"},
                    {"rounds", kl.timed.t_r.size()}, {"lock_wait_s", lock.waited_seconds()},
                    {"phases_s", progress.phases()}};
   rec["T_B"] = Median(b.kd_runs);

@@ -22,30 +22,31 @@ absl::StatusOr<double> BuildEmbree(const TriangleSoup& soup, const EmbreeOptions
 
 }  // namespace
 
-absl::Status TimeBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
-                        bool embree_rounds, int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b) {
-  if (step) step("warm-up builds");
+absl::Status WarmUpBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
+                          TimedBuilds* b) {
   absl::StatusOr<double> s = BuildKd(soup, config, b);
   if (!s.ok()) return s.status();
   b->kd_warmup = *s;
-  if (embree != nullptr) {
-    if (!(s = BuildEmbree(soup, *embree, b)).ok()) return s.status();
-    b->embree_warmup = *s;
-  }
-  if (step) step("waiting for the timing lock");
-  if (absl::Status st = lock->Acquire(); !st.ok()) return st;
+  if (embree == nullptr) return absl::OkStatus();
+  if (!(s = BuildEmbree(soup, *embree, b)).ok()) return s.status();
+  b->embree_warmup = *s;
+  return absl::OkStatus();
+}
+
+absl::Status TimeBuildRounds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
+                             int repeats, double budget_s, const StepFn& step, TimedBuilds* b) {
   std::vector<double> rounds;
   for (int i = 0; MoreRuns(rounds, repeats, budget_s); ++i) {
     if (step) step(absl::StrFormat("build round %d/%d", i + 1, repeats));
-    if (!(s = BuildKd(soup, config, b)).ok()) return s.status();
+    absl::StatusOr<double> s = BuildKd(soup, config, b);
+    if (!s.ok()) return s.status();
     b->kd_runs.push_back(*s);
     rounds.push_back(*s);
-    if (embree == nullptr || !embree_rounds) continue;
+    if (embree == nullptr) continue;
     if (!(s = BuildEmbree(soup, *embree, b)).ok()) return s.status();
     b->embree_runs.push_back(*s);
     rounds.back() += *s;
   }
-  lock->Release();
   return absl::OkStatus();
 }
 

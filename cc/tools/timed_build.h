@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "cc/base/timing_lock.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/geometry/triangle.h"
 #include "cc/kdtree/builder.h"
@@ -24,12 +23,18 @@ struct TimedBuilds {
   std::vector<double> kd_runs, embree_runs;                       // the timed rounds
 };
 
-// `embree` null: the kd-tree alone; `embree_rounds` false: Embree built once,
-// untimed (its warm-up; b->embree_runs stays empty). Rounds repeat under
-// MoreRuns(round totals, repeats, budget_s). Acquires `lock` for the rounds
-// and releases it.
-absl::Status TimeBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
-                        bool embree_rounds, int repeats, double budget_s, TimingLock* lock, const StepFn& step, TimedBuilds* b);
+// The untimed warm-up build of each tracer (`embree` null: the kd-tree
+// alone), kept in *b for the renders.
+absl::Status WarmUpBuilds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
+                          TimedBuilds* b);
+
+// Timed rounds alternating the kd-tree and (unless null) Embree, repeated
+// under MoreRuns(round totals, repeats, budget_s); the caller holds the
+// TimingLock. Each build first frees the tracer's last one (b->tree,
+// b->embree), so a process never holds two trees of a tracer: tracers taken
+// from *b before are gone after.
+absl::Status TimeBuildRounds(const TriangleSoup& soup, const Config& config, const EmbreeOptions* embree,
+                             int repeats, double budget_s, const StepFn& step, TimedBuilds* b);
 
 }  // namespace kdtree
 
