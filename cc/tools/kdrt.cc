@@ -121,7 +121,6 @@ absl::Status WriteFile(const std::string& path, const std::function<absl::Status
   return write(path);
 }
 
-
 // The configuration's fields as the record shows them.
 Json ConfigJson(const Config& c) {
   return {{"max_depth", c.max_depth},         {"max_leaf_size", c.max_leaf_size},
