@@ -2,22 +2,24 @@
 final variant (clipping and pruning) and our fastest tree (sah-packet, also
 in the renderer's fastest mode) against Embree's build and render, the
 fastest of the nine beside them, and the rays on which the two disagree
-(over every variant), classed as kdrt's comparison (cc/render/compare.h) classes them in
-exact arithmetic: grazing (the ray passes within 4 ulps of an edge), at the
-origin (the origin within 8 ulps of the plane of a reported triangle), other
-(including a hit below the watertight t bound); and which tracer was wrong.
+(over every variant), classed as kdrt's comparison (cc/render/compare.h)
+classes them in exact arithmetic: grazing (the ray passes within 4 ulps of
+an edge), at the origin (the origin within 8 ulps of the plane of a reported
+triangle), other (including a hit below the watertight t bound); and which
+tracer was wrong.
 
 Embree runs in the same kdrt process as a kd-tree run, on its rays: on every
 variant it is built once and compared ray by ray; on the variants of
 experiments/matrix.json's embree_timed_variants its timed rounds alternate
-with the kd-tree's (embree.timed; the others record no Embree times). The kd/Embree ratio of a variant on a
-scene is that record's paired median: the median over the rounds of Embree's
-T_R over the kd-tree's T_R in the same round (embree.paired_ratio; for the
-fast mode fast_render.paired_ratio), so the load of the machine during a
-round hits both tracers alike. A record without paired ratios (made before
-they were recorded) gives no ratio: its cells are dashes and the caption
-counts them. Embree's times shown are the medians of all its timed rounds on
-the scene (over every kd-tree run that ran it).
+with the kd-tree's (embree.timed; the others record no Embree times). The
+kd/Embree ratio of a variant on a scene is that record's paired median: the
+median over the rounds of Embree's T_R over the kd-tree's T_R in the same
+round (embree.paired_ratio; for the fast mode fast_render.paired_ratio), so
+the load of the machine during a round hits both tracers alike. A record
+without paired ratios (made before they were recorded) gives no ratio: its
+cells are dashes and the caption counts them. Embree's times shown are the
+medians of all its timed rounds on the scene (over every kd-tree run that
+timed it).
 
 Output: embree.tex, embree_ratio.pdf (the paired ratios per scene with their
 spread over the rounds; embree_ratio.tex is its figure) and macros (median
