@@ -51,7 +51,9 @@ class EmbreeTracer : public Tracer {
   Hit Intersect(const Ray& ray) const override;
   bool Occluded(const Ray& ray) const override;
   // rtcIntersect4 / rtcOccluded4 on the valid lanes (Embree's packet kernels,
-  // or its emulation by single rays where the library has no native ray4).
+  // or its emulation by single rays where the library has no native ray4);
+  // IntersectPacket with the coherent flag (the renderer's packets are 2x2
+  // camera rays), OccludedPacket without.
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
   void OccludedPacket(const Ray* rays, int n, bool* occluded) const override;
   // Whether the library traces ray4 packets natively
