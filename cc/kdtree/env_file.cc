@@ -2,12 +2,11 @@
 
 #include <cctype>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "cc/base/read_file.h"
 
 namespace kdtree {
 namespace {
@@ -219,11 +218,9 @@ absl::StatusOr<EnvResult> ParseEnvironment(const std::string& text, const std::s
 }
 
 absl::StatusOr<EnvResult> LoadEnvironmentFile(const std::string& path, const Config& base) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open environment file"));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ParseEnvironment(ss.str(), path, base);
+  absl::StatusOr<std::string> text = ReadTextInput(path, "environment file");
+  if (!text.ok()) return text.status();
+  return ParseEnvironment(*text, path, base);
 }
 
 }  // namespace kdtree

@@ -1,5 +1,6 @@
 #include "cc/kdtree/env_file.h"
 
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -115,6 +116,16 @@ std::vector<std::string> MatrixVariants(const char* key) {
   EXPECT_TRUE(matrix.is_object() && matrix.contains(key) && matrix[key].is_array()) << key;
   return matrix.is_object() && matrix.contains(key) ? matrix[key].get<std::vector<std::string>>()
                                                     : std::vector<std::string>();
+}
+
+// Issue 24: a directory given as the environment file is refused by name
+// (it was read as an empty file: the preset alone, exit 0).
+TEST(EnvFile, ADirectoryIsRefusedByName) {
+  const char* dir = std::getenv("TEST_TMPDIR");
+  ASSERT_NE(dir, nullptr);
+  absl::StatusOr<EnvResult> r = LoadEnvironmentFile(dir);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(), std::string(dir) + ": the environment file is a directory");
 }
 
 TEST(EnvFile, TheMatrixsNineAreTheReportsPresets) {

@@ -2,13 +2,12 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "cc/base/read_file.h"
 
 namespace kdtree {
 namespace {
@@ -264,12 +263,9 @@ absl::StatusOr<View> ParseView(const std::string& text, const std::string& filen
 }
 
 absl::StatusOr<View> LoadViewFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open view file"));
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  if (in.bad()) return absl::DataLossError(absl::StrCat(path, ": read error"));
-  return ParseView(buf.str(), path);
+  absl::StatusOr<std::string> text = ReadTextInput(path, "view file");
+  if (!text.ok()) return text.status();
+  return ParseView(*text, path);
 }
 
 std::string ViewToText(const View& view) {

@@ -1,5 +1,6 @@
 #include "cc/render/view.h"
 
+#include <cstdlib>
 #include <string>
 
 #include "absl/strings/str_cat.h"
@@ -99,6 +100,16 @@ TEST(ViewParser, MissingFileIsNotFound) {
   absl::StatusOr<View> v = LoadViewFile("/nonexistent/x.view");
   ASSERT_FALSE(v.ok());
   EXPECT_NE(v.status().message().find("/nonexistent/x.view"), std::string::npos);
+}
+
+// Issue 24: a directory given as the view file is refused by name (it was
+// read as an empty file: "no 'camera' block").
+TEST(ViewParser, ADirectoryIsRefusedByName) {
+  const char* dir = std::getenv("TEST_TMPDIR");
+  ASSERT_NE(dir, nullptr);
+  absl::StatusOr<View> v = LoadViewFile(dir);
+  ASSERT_FALSE(v.ok());
+  EXPECT_EQ(v.status().message(), std::string(dir) + ": the view file is a directory");
 }
 
 TEST(AutoView, FramesTheBoxFromAboveFront) {
