@@ -1,5 +1,5 @@
-// What build_bench and render_bench share: writing one JSON record per line.
-// (Paths: cc/tools/paths.h.)
+// What build_bench and render_bench share: writing one JSON record per line
+// (the line itself: cc/base/json_line.h; paths: cc/tools/paths.h).
 #ifndef KDTREE_CC_BENCH_BENCH_RECORD_H_
 #define KDTREE_CC_BENCH_BENCH_RECORD_H_
 
@@ -12,11 +12,6 @@ namespace kdtree {
 namespace bench {
 
 using Json = nlohmann::ordered_json;
-
-// One record as one line (invalid UTF-8 in names replaced, not thrown).
-inline std::string Line(const Json& record) {
-  return record.dump(-1, ' ', false, Json::error_handler_t::replace);
-}
 
 // Writes the line and a newline to `out` (when not null) and flushes; false
 // when the write failed.

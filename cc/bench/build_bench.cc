@@ -39,6 +39,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/json_line.h"
 #include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
@@ -258,7 +259,7 @@ int Run() {
           {"warmup", warmup_by_threads[k].size()},
           {"lock_wait_s", lock.waited_seconds() - waited_before}};
       rec["provenance"] = provenance_json;
-      if (!bench::WriteLine(out, bench::Line(rec))) {
+      if (!bench::WriteLine(out, JsonLine(rec))) {
         std::fprintf(stderr, "build_bench: cannot write %s\n",
                      out_path.empty() ? "stdout" : out_path.c_str());
         return 1;

@@ -66,6 +66,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/json_line.h"
 #include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
@@ -418,7 +419,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                      {"warmup", warmup},
                      {"lock_wait_s", lock_wait_s}};
     rec["provenance"] = ctx.provenance;
-    const std::string line = bench::Line(rec);
+    const std::string line = JsonLine(rec);
     if (!bench::WriteLine(stdout, line) || !bench::WriteLine(out, line)) {
       return absl::InternalError("cannot write the record");
     }

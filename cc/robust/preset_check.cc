@@ -5,6 +5,7 @@
 #include <thread>
 #include <utility>
 
+#include "cc/base/json_line.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/ray_packet.h"
@@ -107,7 +108,7 @@ std::string ResultJson(const std::string& case_name, const CheckResult& r) {
                                     {"mismatches", r.mismatches},
                                     {"any_hit_mismatches", r.any_hit_mismatches},
                                     {"required", !r.informational}};
-  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  return JsonLine(j);
 }
 
 namespace {

@@ -49,6 +49,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/json_line.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/io/soup_cache.h"
@@ -350,7 +351,7 @@ int Run() {
                 {"mismatches_between_modes", mismatches},
                 {"same_triangle_other_t", other_t},
                 {"provenance", provenance}};
-    const std::string line = rec.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+    const std::string line = JsonLine(rec) + "\n";
     if (std::fputs(line.c_str(), out) < 0 || std::fflush(out) != 0) {
       std::fprintf(stderr, "robust_cost_bench: cannot write %s\n", absl::GetFlag(FLAGS_out).c_str());
       return 1;

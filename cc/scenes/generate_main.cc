@@ -18,6 +18,7 @@
 #include "absl/flags/parse.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/str_format.h"
+#include "cc/base/json_line.h"
 #include "cc/scenes/assembly.h"
 #include "cc/scenes/city.h"
 #include "cc/scenes/courtyard.h"
@@ -138,8 +139,7 @@ int Main() {
       {"vertices", mesh->vertices.size()},
       {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}},
       {"seconds", seconds}};
-  std::printf("%s\n",
-              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  std::printf("%s\n", JsonLine(line).c_str());
   return 0;
 }
 

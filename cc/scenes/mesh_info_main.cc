@@ -32,6 +32,7 @@
 #include "assimp/Importer.hpp"
 #include "assimp/postprocess.h"
 #include "assimp/scene.h"
+#include "cc/base/json_line.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
 #include "nlohmann/json.hpp"
@@ -180,7 +181,6 @@ int main(int argc, char** argv) {
       {"dropped", t.dropped},
       {"skipped_nodes", t.skipped_nodes},
       {"bounds", {{t.lo[0], t.lo[1], t.lo[2]}, {t.hi[0], t.hi[1], t.hi[2]}}}};
-  std::printf("%s\n",
-              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  std::printf("%s\n", kdtree::JsonLine(line).c_str());
   return t.triangles > 0 ? 0 : 1;
 }

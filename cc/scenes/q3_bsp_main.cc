@@ -12,6 +12,7 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "cc/base/json_line.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
 #include "cc/scenes/q3_bsp.h"
@@ -66,7 +67,6 @@ int main(int argc, char** argv) {
       {"patch_faces", static_cast<long long>(stats.patch_faces)},
       {"skipped_faces", static_cast<long long>(stats.skipped_faces)},
       {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}}};
-  std::printf("%s\n",
-              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  std::printf("%s\n", kdtree::JsonLine(line).c_str());
   return 0;
 }

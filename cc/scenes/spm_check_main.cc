@@ -16,6 +16,7 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "cc/base/json_line.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/spm.h"
 #include "nlohmann/json.hpp"
@@ -66,8 +67,7 @@ int Main() {
                                        {"skinned", skinned},
                                        {"triangles", triangles},
                                        {"vertices", vertices}};
-  std::printf("%s\n",
-              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  std::printf("%s\n", JsonLine(line).c_str());
   return parsed == total && total > 0 ? 0 : 1;
 }
 

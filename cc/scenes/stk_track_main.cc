@@ -13,6 +13,7 @@
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/strings/str_split.h"
+#include "cc/base/json_line.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
 #include "cc/scenes/stk_track.h"
@@ -71,8 +72,7 @@ int Main() {
       {"skipped", skipped},
       {"bounds", {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}}},
       {"seconds", seconds}};
-  std::printf("%s\n",
-              line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+  std::printf("%s\n", JsonLine(line).c_str());
   return 0;
 }
 

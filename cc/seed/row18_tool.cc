@@ -6,6 +6,7 @@
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "cc/base/json_line.h"
 #include "cc/io/mesh_loader.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/stats.h"
@@ -50,8 +51,7 @@ int main(int argc, char** argv) {
           {"mode", seed ? "seed" : "default"},
           {"n_tri", soup->size()},
           {"stats", kdtree::StatsToJson(kdtree::ComputeStats(*tree))}};
-      std::printf("%s\n",
-                  line.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
+      std::printf("%s\n", kdtree::JsonLine(line).c_str());
     }
   }
   return 0;

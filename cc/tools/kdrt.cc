@@ -44,6 +44,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "cc/base/json_line.h"
 #include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
@@ -339,7 +340,7 @@ absl::Status Run() {
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();
   rec["provenance"] = prov.ToJson();
-  const std::string line = rec.dump(-1, ' ', false, Json::error_handler_t::replace);
+  const std::string line = JsonLine(rec);
   std::printf("%s\n", line.c_str());
   std::fflush(stdout);
   const std::string record_path = FromInvocationDir(absl::GetFlag(FLAGS_record));

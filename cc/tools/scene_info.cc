@@ -14,6 +14,7 @@
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/status/statusor.h"
+#include "cc/base/json_line.h"
 #include "cc/geometry/aabb.h"
 #include "cc/geometry/triangle.h"
 #include "cc/io/mesh_loader.h"
@@ -61,7 +62,7 @@ int Run(const std::vector<char*>& positional) {
                      {"load_s", report.load_seconds},
                      {"from_cache", report.from_cache},
                      {"bounds", {{box.lo.x, box.lo.y, box.lo.z}, {box.hi.x, box.hi.y, box.hi.z}}}};
-  std::printf("%s\n", line.dump(-1, ' ', false, Json::error_handler_t::replace).c_str());
+  std::printf("%s\n", JsonLine(line).c_str());
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 
