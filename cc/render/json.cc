@@ -1,11 +1,10 @@
 #include "cc/render/json.h"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
+#include "cc/base/read_file.h"
 
 namespace kdtree {
 namespace {
@@ -52,12 +51,9 @@ absl::StatusOr<nlohmann::json> ParseJson(const std::string& text, const std::str
 }
 
 absl::StatusOr<nlohmann::json> LoadJsonFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat(path, ": cannot open"));
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  if (in.bad()) return absl::DataLossError(absl::StrCat(path, ": read error"));
-  return ParseJson(buf.str(), path);
+  absl::StatusOr<std::string> text = ReadTextInput(path, "JSON file");
+  if (!text.ok()) return text.status();
+  return ParseJson(*text, path);
 }
 
 }  // namespace kdtree

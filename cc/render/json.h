@@ -21,8 +21,8 @@ namespace kdtree {
 // `filename` is only used in error messages.
 absl::StatusOr<nlohmann::json> ParseJson(const std::string& text, const std::string& filename);
 
-// Reads and parses a file; errors name the file (NotFound when it cannot be
-// opened).
+// Reads (cc/base/read_file.h: once, a directory or device refused) and parses
+// a file; errors name the file (NotFound when it does not exist).
 absl::StatusOr<nlohmann::json> LoadJsonFile(const std::string& path);
 
 }  // namespace kdtree
