@@ -28,11 +28,15 @@ TriangleSoup ThreeUnitTriangles() {
   return soup;
 }
 
-TEST(Stats, HandCountedTree) {
-  const TriangleSoup soup = ThreeUnitTriangles();
+// The tree counted above.
+absl::StatusOr<KdTree> HandCountedTree() {
   Config c = *Preset("median-16-2");
   c.max_leaf_size = 1;
-  absl::StatusOr<KdTree> tree = BuildKdTree(soup, c);
+  return BuildKdTree(ThreeUnitTriangles(), c);
+}
+
+TEST(Stats, HandCountedTree) {
+  absl::StatusOr<KdTree> tree = HandCountedTree();
   ASSERT_TRUE(tree.ok());
   const TreeStats s = ComputeStats(*tree);
   EXPECT_EQ(s.inner, 2u);
@@ -79,10 +83,7 @@ TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
 // StatsToJson: every field, in the order the records have always had; counts
 // as integers, non-finite values as null.
 TEST(Stats, ToJsonFieldsInOrder) {
-  const TriangleSoup soup = ThreeUnitTriangles();
-  Config c = *Preset("median-16-2");
-  c.max_leaf_size = 1;
-  absl::StatusOr<KdTree> tree = BuildKdTree(soup, c);
+  absl::StatusOr<KdTree> tree = HandCountedTree();
   ASSERT_TRUE(tree.ok());
   TreeStats s = ComputeStats(*tree);
   const nlohmann::ordered_json j = StatsToJson(s);

@@ -15,9 +15,10 @@
 namespace kdtree {
 namespace {
 
-std::string TempRoot() {
+// A fresh checkout-like root (data/cache/scenes/) per suffix.
+std::string TempRoot(const std::string& suffix = "") {
   const char* dir = std::getenv("TEST_TMPDIR");
-  const std::string root = absl::StrCat(dir ? dir : "/tmp", "/manifest_test");
+  const std::string root = absl::StrCat(dir ? dir : "/tmp", "/manifest_test", suffix);
   mkdir(root.c_str(), 0755);
   mkdir((root + "/data").c_str(), 0755);
   mkdir((root + "/data/cache").c_str(), 0755);
@@ -27,6 +28,15 @@ std::string TempRoot() {
 
 void Write(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
+}
+
+// A root whose scene index holds one scene, "m", a triangle at ROOT/m.obj.
+std::string OneSceneRoot(const std::string& suffix) {
+  const std::string root = TempRoot(suffix);
+  Write(root + "/m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Write(root + "/data/cache/scenes/index.json",
+        absl::StrCat(R"({"scenes": {"m": {"file": ")", root, R"(/m.obj"}}})"));
+  return root;
 }
 
 TEST(ViewFromManifest, CameraAndLight) {
@@ -88,14 +98,7 @@ TEST(ResolveScene, IndexAndManifest) {
 }
 
 TEST(ResolveScene, MalformedManifestNamesFileAndLine) {
-  const std::string root = TempRoot() + "3";
-  mkdir(root.c_str(), 0755);
-  mkdir((root + "/data").c_str(), 0755);
-  mkdir((root + "/data/cache").c_str(), 0755);
-  mkdir((root + "/data/cache/scenes").c_str(), 0755);
-  Write(root + "/m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  Write(root + "/data/cache/scenes/index.json",
-        absl::StrCat(R"({"scenes": {"m": {"file": ")", root, R"(/m.obj"}}})"));
+  const std::string root = OneSceneRoot("3");
   Write(root + "/data/manifest.json", "{\"scenes\": [\n  {\"name\": \"m\",}\n]}\n");
   absl::StatusOr<SceneRef> ref = ResolveScene(root, "m");
   ASSERT_FALSE(ref.ok());
@@ -105,14 +108,7 @@ TEST(ResolveScene, MalformedManifestNamesFileAndLine) {
 }
 
 TEST(ResolveScene, NoManifestLeavesNoView) {
-  const std::string root = TempRoot() + "2";
-  mkdir(root.c_str(), 0755);
-  mkdir((root + "/data").c_str(), 0755);
-  mkdir((root + "/data/cache").c_str(), 0755);
-  mkdir((root + "/data/cache/scenes").c_str(), 0755);
-  Write(root + "/m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-  Write(root + "/data/cache/scenes/index.json",
-        absl::StrCat(R"({"scenes": {"m": {"file": ")", root, R"(/m.obj"}}})"));
+  const std::string root = OneSceneRoot("2");
   absl::StatusOr<SceneRef> ref = ResolveScene(root, "m");
   ASSERT_TRUE(ref.ok()) << ref.status();
   EXPECT_FALSE(ref->has_view);
