@@ -77,6 +77,12 @@ def _comparisons(records):
             and "rays" in r and "hard_case" in r]
 
 
+def _ray_stride(records):
+    """The suite's ray stride (robust_suite.py --ray_stride; 1 = every ray)."""
+    suites = [r for r in records if r.get("kind") == "suite"]
+    return int(suites[-1].get("ray_stride", 1)) if suites else 1
+
+
 def _cases_table(records, binaries):
     comps = _comparisons(records)
     # The report's presets in order, then any others the suite ran (newer
@@ -122,6 +128,12 @@ def _cases_table(records, binaries):
                "by design and is only reported).")
     notes = ["Hard cases: " + "; ".join("%d.~%s" % (n, CASE_TITLES[n])
                                         for n in numbers) + "."]
+    stride = _ray_stride(records)
+    if stride > 1:
+        notes.append("This run checked every %d\\textsuperscript{th} packet "
+                     "of 4 of each case's rays (a quick profile); the full "
+                     "profile and \\texttt{bazel test} check every ray."
+                     % stride)
     tex = latex.booktabs(header, body, align="l" + "r" * len(numbers),
                          caption=caption, label="tab:robust-cases",
                          notes=notes, size="footnotesize")

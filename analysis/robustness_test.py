@@ -160,6 +160,16 @@ class RobustnessTest(unittest.TestCase):
         # Mrays/s of the median runs: city's fast runs take 2 s.
         self.assertIn("0.001", cost)
 
+    def test_a_sampled_suite_says_so(self):
+        self.write(robustness.SUITE_FILE, SUITE)
+        self.run_gen()
+        self.assertNotIn("packet of 4", self.read("robust_cases.tex"))
+        self.write(robustness.SUITE_FILE,
+                   SUITE + [{"kind": "suite", "ray_stride": 4}])
+        self.run_gen()
+        self.assertIn("every 4\\textsuperscript{th} packet of 4",
+                      self.read("robust_cases.tex"))
+
     def test_cost_verdict(self):
         self.assertEqual(robustness.cost_verdict([1.1, 1.2, 1.3]),
                          (1.2, 1.1, 1.3, False))

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <thread>
 #include <utility>
 
+#include "absl/strings/numbers.h"
 #include "cc/base/json_line.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
@@ -28,6 +30,21 @@ absl::StatusOr<Config> ConfigFor(const std::string& name) {
   if (name == "default") return Config();
   return Preset(name);
 }
+
+size_t RayStride() {
+  static const size_t stride = [] {
+    const char* env = std::getenv("KDTREE_ROBUST_RAY_STRIDE");
+    size_t k = 1;
+    if (env != nullptr && *env != '\0' && (!absl::SimpleAtoi(env, &k) || k == 0)) {
+      std::fprintf(stderr, "KDTREE_ROBUST_RAY_STRIDE=%s: not a whole number >= 1\n", env);
+      std::exit(2);
+    }
+    return k;
+  }();
+  return stride;
+}
+
+bool InSample(size_t i) { return (i / kRayPacketSize) % RayStride() == 0; }
 
 void ParallelFor(size_t n, const std::function<void(size_t, size_t)>& body) {
   const size_t workers =
@@ -170,23 +187,22 @@ std::vector<CheckResult> CheckAllPresets(const std::string& case_name, const Tri
                                          const std::vector<Ray>& rays, IntersectionMode mode,
                                          const std::vector<Hit>* reference,
                                          const CheckOptions& options) {
-  std::vector<Hit> computed;
-  if (reference == nullptr) {
-    computed = BruteForceHits(soup, rays, mode);
-    reference = &computed;
-  }
-  return Check(case_name, soup, rays, {mode}, {reference}, options);
+  const std::vector<Ray> sample = Sample(rays);
+  const std::vector<Hit> sampled =
+      reference == nullptr ? BruteForceHits(soup, sample, mode) : Sample(*reference);
+  return Check(case_name, soup, sample, {mode}, {&sampled}, options);
 }
 
 std::vector<CheckResult> CheckAllPresets(const std::string& case_name, const TriangleSoup& soup,
                                          const std::vector<Ray>& rays,
                                          const std::vector<IntersectionMode>& modes,
                                          const CheckOptions& options) {
+  const std::vector<Ray> sample = Sample(rays);
   std::vector<std::vector<Hit>> computed;
-  for (IntersectionMode mode : modes) computed.push_back(BruteForceHits(soup, rays, mode));
+  for (IntersectionMode mode : modes) computed.push_back(BruteForceHits(soup, sample, mode));
   std::vector<const std::vector<Hit>*> references;
   for (const auto& c : computed) references.push_back(&c);
-  return Check(case_name, soup, rays, modes, references, options);
+  return Check(case_name, soup, sample, modes, references, options);
 }
 
 std::vector<std::vector<float>> SplitValues(const KdTree& tree) {

@@ -45,6 +45,26 @@ std::vector<std::string> CheckedPresets();
 // Config for a name from CheckedPresets() or "pruning-seed".
 absl::StatusOr<Config> ConfigFor(const std::string& name);
 
+// The suite's ray sample, for a quick reproduction: with
+// KDTREE_ROBUST_RAY_STRIDE=k in the environment (cc/robust/robust_suite.py
+// sets it from the profile and records it), every check keeps every k-th
+// group of kRayPacketSize consecutive rays (one packet) of its case and drops
+// the others; unset or 1 keeps every ray (bazel test, the full profile). Any
+// other value than a whole number >= 1 stops the process, naming it.
+size_t RayStride();
+// Whether ray i of a case is in the sample.
+bool InSample(size_t i);
+// The elements of v whose index is InSample().
+template <typename T>
+std::vector<T> Sample(const std::vector<T>& v) {
+  if (RayStride() == 1) return v;
+  std::vector<T> kept;
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (InSample(i)) kept.push_back(v[i]);
+  }
+  return kept;
+}
+
 // Runs body(begin, end) over [0, n) split across all hardware threads.
 void ParallelFor(size_t n, const std::function<void(size_t, size_t)>& body);
 
@@ -66,8 +86,8 @@ struct CheckOptions {
   std::vector<std::string> presets;
 };
 
-// Builds every preset over `soup` and checks it on `rays` against `reference`
-// (computed with BruteForceHits when null). Prints one ROBUST_JSON line each.
+// Builds every preset over `soup` and checks it on the Sample() of `rays`
+// against `reference` (computed with BruteForceHits when null). Prints one ROBUST_JSON line each.
 std::vector<CheckResult> CheckAllPresets(const std::string& case_name, const TriangleSoup& soup,
                                          const std::vector<Ray>& rays, IntersectionMode mode,
                                          const std::vector<Hit>* reference = nullptr,

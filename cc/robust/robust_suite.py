@@ -22,7 +22,11 @@ lines. Every such record is written to --out with "hard_case" (1-9),
 "binary" and "provenance" added, then one {"kind": "binary", ...} record per
 binary with its exit status ("passed": the gtest assertions, 0 mismatches,
 held), and last one {"kind": "suite", ...} record: the profile, whether every
-case ran and passed, and the provenance. --out is replaced only when all of
+case ran and passed, its ray stride and the provenance. --ray_stride k
+(quick reproductions) has every check keep every k-th packet of 4 of its
+case's rays (KDTREE_ROBUST_RAY_STRIDE, cc/robust/preset_check.h): every
+preset, mode and scene still runs, on 1/k of the rays; bazel test and the
+default of 1 check them all. --out is replaced only when all of
 it ran (a failing case is recorded, not fatal). The binaries are untimed
 checks: --jobs of them run at once. When --out already holds a complete,
 passing run of the same source tree (cc/base/source_id.sh: the tools'
@@ -157,10 +161,10 @@ def parse_records(stdout):
     return out
 
 
-def suite_done(out_path, source_tree, profile, cases=None):
+def suite_done(out_path, source_tree, profile, cases=None, ray_stride=1):
     """The suite record of out_path when it is a complete, passing run of
-    source_tree (not None) and profile, with a passing binary record for
-    every case; else None."""
+    source_tree (not None), profile and ray_stride, with a passing binary
+    record for every case; else None."""
     cases = CASES if cases is None else cases
     if not source_tree:
         return None
@@ -171,6 +175,7 @@ def suite_done(out_path, source_tree, profile, cases=None):
     suite = suites[-1]
     if not (suite.get("complete") and suite.get("passed")
             and suite.get("profile") == profile
+            and suite.get("ray_stride", 1) == ray_stride
             and source_tree_of(suite) == source_tree):
         return None
     passed = {r.get("hard_case") for r in recs
@@ -181,17 +186,18 @@ def suite_done(out_path, source_tree, profile, cases=None):
     return suite
 
 
-def _run_case(bin_dir, case):
+def _run_case(bin_dir, case, ray_stride=1):
     number, binary, _ = case
+    env = dict(os.environ, KDTREE_ROBUST_RAY_STRIDE=str(ray_stride))
     start = time.time()
     proc = subprocess.run([os.path.join(bin_dir, binary)],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                          universal_newlines=True, check=False)
+                          universal_newlines=True, check=False, env=env)
     return proc, time.time() - start
 
 
 def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
-              profile=None, jobs=1):
+              profile=None, jobs=1, ray_stride=1):
     """Runs every case binary (jobs at a time); writes --out; returns the
     number that failed."""
     cases = CASES if cases is None else cases
@@ -207,7 +213,8 @@ def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
             if r.get("kind") == "binary"}
     order = sorted(range(len(cases)), key=lambda i: -last.get(cases[i][1], 0))
     with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
-        futures = {pool.submit(_run_case, bin_dir, cases[i]): i for i in order}
+        futures = {pool.submit(_run_case, bin_dir, cases[i], ray_stride): i
+                   for i in order}
         done = {}
         for fut in concurrent.futures.as_completed(futures):
             i = futures[fut]
@@ -240,6 +247,7 @@ def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
     records.append({"kind": "suite", "profile": profile, "complete": True,
                     "passed": failed == 0, "cases": len(cases),
                     "failed": failed, "jobs": max(1, jobs),
+                    "ray_stride": ray_stride,
                     "seconds": round(time.time() - start, 3),
                     "provenance": provenance})
     os.makedirs(os.path.dirname(os.path.abspath(out_path)), exist_ok=True)
@@ -362,8 +370,8 @@ def plan(args, identity, log=None):
     if not tree:
         print("robust_suite: the source tree is unknown (not a git "
               "checkout?): nothing counts as done", file=log)
-    suite = None if args.skip_suite else suite_done(args.out, tree,
-                                                    args.profile)
+    suite = None if args.skip_suite else suite_done(
+        args.out, tree, args.profile, ray_stride=args.ray_stride)
     if suite is not None:
         print("robust_suite: %s already holds a complete, passing suite run "
               "of source tree %s (profile %s, commit %s, %s): not rebuilt or "
@@ -414,11 +422,16 @@ def main(argv=None, identity=None):
     parser.add_argument("--compilation_mode", default="",
                         help="how the binaries were built (default: from "
                         "--bin_dir's bazel-out path)")
+    parser.add_argument("--ray_stride", type=int, default=1,
+                        help="check every k-th packet of 4 rays of each "
+                        "case (quick reproductions; default: every ray)")
     parser.add_argument("--skip_suite", action="store_true")
     parser.add_argument("--print_targets", action="store_true",
                         help="print the Bazel targets still needed (none "
                         "when the results hold everything) and exit")
     args = parser.parse_args(argv)
+    if args.ray_stride < 1:
+        parser.error("--ray_stride must be >= 1")
     args.cost = args.cost or bool(args.cost_bench)
     if identity is None:
         identity = code_identity(args.repo_root)
@@ -433,7 +446,8 @@ def main(argv=None, identity=None):
         mode = args.compilation_mode or guess_compilation_mode(args.bin_dir)
         failed += run_suite(args.bin_dir, args.out,
                             provenance=suite_provenance(identity, mode),
-                            profile=args.profile, jobs=args.jobs)
+                            profile=args.profile, jobs=args.jobs,
+                            ray_stride=args.ray_stride)
     if args.cost_bench and jobs:
         scenes = profile_scenes(args.manifest, args.index, args.profile)
         failed += run_cost(args.cost_bench, args.cost_out, scenes,

@@ -116,6 +116,23 @@ class SuiteTest(unittest.TestCase):
                                provenance=prov, profile="quick")
         self.assertIsNone(robust_suite.suite_done(out, TREE, "quick", cases))
 
+    def test_the_ray_stride_reaches_the_cases_and_keys_the_run(self):
+        write_script(os.path.join(self.dir, "stride"),
+                     "echo \"ROBUST_JSON {\\\"stride\\\": "
+                     "\"$KDTREE_ROBUST_RAY_STRIDE\"}\"\n")
+        out = os.path.join(self.dir, "robust.jsonl")
+        cases = [(1, "stride", "s")]
+        prov = robust_suite.suite_provenance(IDENT, "opt")
+        robust_suite.run_suite(self.dir, out, cases=cases, log=self.log,
+                               provenance=prov, profile="quick", ray_stride=4)
+        recs = read_jsonl(out)
+        self.assertEqual(recs[0]["stride"], 4)
+        self.assertEqual(recs[-1]["ray_stride"], 4)
+        self.assertIsNotNone(robust_suite.suite_done(out, TREE, "quick", cases,
+                                                     ray_stride=4))
+        # Every ray was not checked: a run asking for every ray reruns it.
+        self.assertIsNone(robust_suite.suite_done(out, TREE, "quick", cases))
+
     def test_longest_case_of_the_last_run_starts_first(self):
         started = os.path.join(self.dir, "started")
         for name in ("quick", "slow"):
