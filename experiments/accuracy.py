@@ -9,11 +9,14 @@ For every scene of the profile and every step, kdrt builds and renders with
 to OUT/accuracy/envs/). The record kdrt writes gets the step's knob, name
 and options and is appended to OUT/results/accuracy.jsonl (append-only; a
 failure is appended as {"ok": false, ...}). Resumable: a (scene, step,
-repeats) already recorded with "ok": true is skipped. Reuses
+repeats) already recorded with "ok": true is skipped. --jobs kdrt processes
+run at once (default: the profile's "jobs", else 1), like the matrix's: their
+untimed work overlaps, their timed steps never do (cc/base/timing_lock.h). Reuses
 experiments/run_matrix.py's record and host helpers. Standard library only.
 """
 
 import argparse
+import concurrent.futures
 import json
 import os
 import re
@@ -67,8 +70,11 @@ def run_one(kdrt, scene, step, profile, profile_name, out, source_tree=None):
     env_dir = os.path.join(out, "accuracy", "envs")
     os.makedirs(env_dir, exist_ok=True)
     env_path = os.path.join(env_dir, slug(step["step"]) + ".env")
-    with open(env_path, "w", encoding="utf-8") as f:
+    # Atomic: another job of the same step may be reading it.
+    tmp = "%s.%d.%s" % (env_path, os.getpid(), scene)
+    with open(tmp, "w", encoding="utf-8") as f:
         f.write(env_text(step["options"]))
+    os.replace(tmp, env_path)
     cmd = [kdrt, "--scene", scene, "--preset", step["preset"],
            "--env", env_path, "--label", slug(step["step"]),
            "--repeats", str(profile["repeats"]), "--threads", "1",
@@ -103,6 +109,9 @@ def main(argv=None):
                         help="comma-separated subset of the profile's scenes")
     parser.add_argument("--knobs", default="",
                         help="comma-separated subset of the knobs")
+    parser.add_argument("--jobs", type=int,
+                        help="kdrt processes at once (default: the profile's "
+                        "'jobs', else 1)")
     parser.add_argument("--force", action="store_true",
                         help="run again steps already recorded (the analysis "
                         "keeps the newest record)")
@@ -128,19 +137,27 @@ def main(argv=None):
         done = set()
     failed = 0
     tree = provenance.pin()["source_tree"]
-    for i, (scene, step) in enumerate(jobs):
-        if tuple(job_key(scene, step, profile["repeats"], tree)) in done:
-            continue
-        rec = run_one(os.path.abspath(args.kdrt), scene, step, profile,
+    pending = [(scene, step) for scene, step in jobs
+               if tuple(job_key(scene, step, profile["repeats"], tree))
+               not in done]
+    jobs_at_once = max(1, args.jobs or profile.get("jobs", 1))
+
+    def one(job):
+        rec = run_one(os.path.abspath(args.kdrt), job[0], job[1], profile,
                       args.profile, args.out, tree)
-        run_matrix.append_record(results_path, rec)
-        failed += not rec["ok"]
-        print("accuracy: [%d/%d] %s / %s: %s" % (
-            i + 1, len(jobs), scene, step["step"],
-            "T_B %.3f s, T_R %.3f s, SAH %.2f" % (
-                rec["T_B"], rec["T_R"], rec.get("sah_cost", float("nan")))
-            if rec["ok"] else "FAILED (%s)" % rec["error"][-300:]),
-            file=sys.stderr)
+        rec["concurrent_jobs"] = jobs_at_once
+        return rec
+
+    with concurrent.futures.ThreadPoolExecutor(jobs_at_once) as pool:
+        for i, rec in enumerate(pool.map(one, pending)):
+            run_matrix.append_record(results_path, rec)
+            failed += not rec["ok"]
+            print("accuracy: [%d/%d] %s / %s: %s" % (
+                i + 1, len(pending), rec["scene"], rec["step"],
+                "T_B %.3f s, T_R %.3f s, SAH %.2f" % (
+                    rec["T_B"], rec["T_R"], rec.get("sah_cost", float("nan")))
+                if rec["ok"] else "FAILED (%s)" % rec["error"][-300:]),
+                file=sys.stderr)
     return 1 if failed else 0
 
 

@@ -158,6 +158,27 @@ class RunMatrixTest(unittest.TestCase):
         # Temporary kdrt directories are removed; the env files stay.
         self.assertEqual(sorted(os.listdir(out)), ["accuracy"])
 
+    def test_accuracy_runs_the_profiles_jobs_at_once_in_order(self):
+        out = os.path.join(self.tmp.name, "out")
+        study = os.path.join(self.tmp.name, "accuracy.json")
+        steps = [{"knob": "bins", "step": "bins %d" % n, "preset": "sah-binned-32",
+                  "options": {"bins": n}} for n in (4, 8, 16)]
+        with open(study, "w") as f:
+            json.dump({"profiles": {"test": {"scenes": ["a"], "repeats": 1,
+                                             "jobs": 2}},
+                       "steps": steps}, f)
+        args = ["--profile", "test", "--kdrt", self.kdrt, "--out", out,
+                "--study", study, "--manifest", self.manifest,
+                "--index", self.index]
+        self.assertEqual(accuracy.main(args), 0)
+        with open(os.path.join(out, "results", "accuracy.jsonl")) as f:
+            recs = [json.loads(line) for line in f]
+        self.assertEqual([r["step"] for r in recs], ["bins 4", "bins 8", "bins 16"])
+        self.assertEqual({r["concurrent_jobs"] for r in recs}, {2})
+        self.assertEqual(accuracy.main(args), 0)  # all done: nothing reruns
+        with open(os.path.join(out, "results", "accuracy.jsonl")) as f:
+            self.assertEqual(len(f.readlines()), 3)
+
     def test_reads_the_index_shape_fetch_py_writes(self):
         with open(self.index, "w") as f:
             json.dump({"scenes": {"a": {"file": "data/cache/scenes/a.obj",
