@@ -179,7 +179,10 @@ def embree_untimed(**over):
 def _base_record(scene, preset):
     """kdrt's fields, in kdrt's order, with made-up numbers."""
     return {"scene": scene, "mesh": "/fixture/%s.obj" % scene, "n_tri": 1000,
-            "load_s": 0.01, "preset": preset, "label": preset, "env_file": None,
+            "load_s": 0.01,
+            "dropped_at_load": {"nonfinite": 0, "degenerate": 0,
+                                "point_line_faces": 0},
+            "preset": preset, "label": preset, "env_file": None,
             "overrides": [], "config": _config(), "env": "KDTree { }",
             "view_source": "auto", "view": "fixture", "width": 800,
             "height": 800, "lights": 1, "threads": 1, "repeats": 1,
@@ -215,7 +218,7 @@ def accuracy_fields(scene, knob, step, options=None):
     """What experiments/accuracy.py adds to a successful kdrt record."""
     return {"ok": True, "job": [scene, step, 1, TREE], "knob": knob,
             "step": step, "options": options or {}, "profile": "quick",
-            "wall_s": 2.0, "node": {"host": "fixture"}}
+            "wall_s": 2.0, "node": {"host": "fixture"}, "concurrent_jobs": 2}
 
 
 def failure(scene, preset, error="boom"):

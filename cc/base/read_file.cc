@@ -6,52 +6,66 @@
 
 #include <cerrno>
 #include <cstring>
+#include <utility>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 
 namespace kdtree {
-namespace {
 
-// Closes the descriptor on every return path.
-struct Fd {
-  int fd;
-  ~Fd() {
-    if (fd >= 0) close(fd);
-  }
-};
-
-}  // namespace
-
-absl::StatusOr<std::string> ReadTextInput(const std::string& path, const std::string& what,
-                                          size_t max_bytes) {
-  Fd in{open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-  if (in.fd < 0) {
+absl::StatusOr<InputFile> InputFile::Open(const std::string& path, const std::string& what) {
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
     const std::string msg = absl::StrCat(path, ": cannot open ", what, ": ", std::strerror(errno));
     return errno == ENOENT ? absl::NotFoundError(msg) : absl::InvalidArgumentError(msg);
   }
+  InputFile in(path, what, fd, false, 0);
   struct stat st;
-  if (fstat(in.fd, &st) != 0) {
+  if (fstat(fd, &st) != 0) {
     return absl::InvalidArgumentError(absl::StrCat(path, ": cannot stat ", what, ": ", std::strerror(errno)));
   }
   if (S_ISDIR(st.st_mode)) return absl::InvalidArgumentError(absl::StrCat(path, ": the ", what, " is a directory"));
   if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) {
     return absl::InvalidArgumentError(absl::StrCat(path, ": the ", what, " is a device"));
   }
+  in.regular_ = S_ISREG(st.st_mode);
+  in.size_ = in.regular_ ? static_cast<uint64_t>(st.st_size) : 0;
+  return in;
+}
+
+InputFile::InputFile(InputFile&& o) noexcept
+    : path_(std::move(o.path_)), what_(std::move(o.what_)), fd_(std::exchange(o.fd_, -1)),
+      regular_(o.regular_), size_(o.size_) {}
+
+InputFile::~InputFile() {
+  if (fd_ >= 0) close(fd_);
+}
+
+absl::StatusOr<std::string> InputFile::ReadAll(size_t max_bytes) {
+  const auto too_long = [&] {
+    return absl::InvalidArgumentError(absl::StrCat(path_, ": ", what_, " is longer than ", max_bytes, " bytes"));
+  };
+  if (regular_ && size_ > max_bytes) return too_long();
   std::string out;
+  if (regular_) out.reserve(size_);
   char buf[1 << 16];
   for (;;) {
-    const ssize_t n = read(in.fd, buf, sizeof(buf));
+    const ssize_t n = read(fd_, buf, sizeof(buf));
     if (n == 0) return out;
     if (n < 0) {
       if (errno == EINTR) continue;
-      return absl::DataLossError(absl::StrCat(path, ": read error: ", std::strerror(errno)));
+      return absl::DataLossError(absl::StrCat(path_, ": read error: ", std::strerror(errno)));
     }
-    if (out.size() + static_cast<size_t>(n) > max_bytes) {
-      return absl::InvalidArgumentError(absl::StrCat(path, ": ", what, " is longer than ", max_bytes, " bytes"));
-    }
+    if (out.size() + static_cast<size_t>(n) > max_bytes) return too_long();
     out.append(buf, static_cast<size_t>(n));
   }
+}
+
+absl::StatusOr<std::string> ReadTextInput(const std::string& path, const std::string& what,
+                                          size_t max_bytes) {
+  absl::StatusOr<InputFile> in = InputFile::Open(path, what);
+  if (!in.ok()) return in.status();
+  return in->ReadAll(max_bytes);
 }
 
 }  // namespace kdtree

@@ -1,20 +1,12 @@
 #include "cc/io/mesh_loader.h"
 
-#include <sys/stat.h>
-#include <zlib.h>
-
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <exception>
-#include <fstream>
 #include <new>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +15,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "cc/geometry/exact_area.h"
+#include "cc/io/mesh_input.h"
 #include "cc/io/mesh_syntax.h"
 
 namespace kdtree {
@@ -33,103 +26,6 @@ constexpr unsigned int kAssimpFlags = aiProcess_Triangulate | aiProcess_PreTrans
 
 absl::Status FileError(absl::StatusCode code, const std::string& path, const std::string& why) {
   return absl::Status(code, absl::StrCat(path, ": ", why));
-}
-
-// Missing, directory, unreadable and empty files get their own clear message.
-absl::Status CheckReadableFile(const std::string& path) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) {
-    const int err = errno;
-    if (err == ENOENT || err == ENOTDIR) {
-      return FileError(absl::StatusCode::kNotFound, path, "file not found");
-    }
-    return FileError(absl::StatusCode::kUnavailable, path,
-                     absl::StrCat("cannot stat file: ", std::strerror(err)));
-  }
-  if (S_ISDIR(st.st_mode)) {
-    return FileError(absl::StatusCode::kInvalidArgument, path, "is a directory, not a mesh file");
-  }
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) {
-    const int err = errno;
-    return FileError(err == EACCES ? absl::StatusCode::kPermissionDenied
-                                   : absl::StatusCode::kUnavailable,
-                     path, absl::StrCat("cannot open file: ", std::strerror(err)));
-  }
-  std::fclose(f);
-  if (S_ISREG(st.st_mode) && st.st_size == 0) {
-    return FileError(absl::StatusCode::kInvalidArgument, path, "file is empty");
-  }
-  return absl::OkStatus();
-}
-
-// Decompresses a whole gzip file into `out`.
-absl::Status ReadGzip(const std::string& path, std::string* out) {
-  gzFile gz = gzopen(path.c_str(), "rb");
-  if (gz == nullptr) {
-    return FileError(absl::StatusCode::kUnavailable, path, "cannot open gzip file");
-  }
-  gzbuffer(gz, 1 << 20);
-  if (gzdirect(gz)) {
-    gzclose_r(gz);
-    return FileError(absl::StatusCode::kInvalidArgument, path,
-                     "name ends in .gz but the file is not gzip-compressed");
-  }
-  constexpr size_t kChunk = size_t{1} << 22;
-  out->clear();
-  try {
-    for (;;) {
-      const size_t old = out->size();
-      out->resize(old + kChunk);
-      const int n = gzread(gz, &(*out)[old], static_cast<unsigned>(kChunk));
-      if (n < 0) {
-        out->resize(old);
-        break;
-      }
-      out->resize(old + static_cast<size_t>(n));
-      if (n == 0) break;
-    }
-  } catch (const std::bad_alloc&) {
-    gzclose_r(gz);
-    out->clear();
-    return FileError(absl::StatusCode::kResourceExhausted, path,
-                     "out of memory while decompressing gzip data");
-  }
-  int errnum = Z_OK;
-  const char* msg = gzerror(gz, &errnum);
-  const std::string why = (msg != nullptr && *msg != '\0') ? msg : "unknown error";
-  gzclose_r(gz);
-  if (errnum != Z_OK) {
-    out->clear();
-    return FileError(absl::StatusCode::kDataLoss, path,
-                     absl::StrCat("corrupt or truncated gzip data (zlib: ", why, ")"));
-  }
-  if (out->empty()) {
-    return FileError(absl::StatusCode::kInvalidArgument, path,
-                     "file is empty after gzip decompression");
-  }
-  return absl::OkStatus();
-}
-
-// Reads a whole (uncompressed) file into `out`.
-absl::Status ReadWholeFile(const std::string& path, std::string* out) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (!in.good() && !in.eof()) {
-    return FileError(absl::StatusCode::kUnavailable, path, "cannot read file");
-  }
-  *out = std::move(ss).str();
-  return absl::OkStatus();
-}
-
-// Lower-case extension of the file name without the dot ("" when none).
-std::string Extension(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  const size_t start = slash == std::string::npos ? 0 : slash + 1;
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || dot < start || dot + 1 == path.size()) return "";
-  return absl::AsciiStrToLower(path.substr(dot + 1));
 }
 
 inline bool SaneCoordinate(float x) { return std::fabs(x) <= kMaxAbsCoordinate; }  // NaN fails
@@ -243,28 +139,21 @@ absl::StatusOr<TriangleSoup> LoadMeshImpl(const std::string& path, const LoadOpt
   if (path.empty()) {
     return absl::InvalidArgumentError("LoadMesh: empty mesh path");
   }
-  if (absl::Status s = CheckReadableFile(path); !s.ok()) return s;
+  absl::StatusOr<MeshInput> input = ReadMeshInput(path, options.max_input_bytes);
+  if (!input.ok()) return input.status();
+  const MeshInput& in = *input;
 
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
   try {
-    if (absl::EndsWithIgnoreCase(path, ".gz")) {
-      std::string data;
-      if (absl::Status s = ReadGzip(path, &data); !s.ok()) return s;
-      const std::string hint = Extension(path.substr(0, path.size() - 3));
-      if (absl::Status s = CheckMeshSyntax(data, hint, path); !s.ok()) return s;
-      scene = importer.ReadFileFromMemory(data.data(), data.size(), 0, hint.c_str());
-    } else {
-      // OBJ, OFF and PLY are checked first (mesh_syntax.h): assimp accepts or
-      // aborts on some malformed files of these formats.
-      const std::string ext = Extension(path);
-      if (ext == "obj" || ext == "off" || ext == "ply") {
-        std::string data;
-        if (absl::Status s = ReadWholeFile(path, &data); !s.ok()) return s;
-        if (absl::Status s = CheckMeshSyntax(data, ext, path); !s.ok()) return s;
-      }
-      scene = importer.ReadFile(path, 0);
+    // OBJ, OFF and PLY are checked first (mesh_syntax.h): assimp accepts or
+    // aborts on some malformed files of these formats.
+    if (in.format == "obj" || in.format == "off" || in.format == "ply") {
+      if (absl::Status s = CheckMeshSyntax(in.bytes, in.format, path); !s.ok()) return s;
     }
+    scene = in.in_memory
+                ? importer.ReadFileFromMemory(in.bytes.data(), in.bytes.size(), 0, in.format.c_str())
+                : importer.ReadFile(path, 0);
     // Post-processing trusts the importer's indices (assimp 5.2's Triangulate
     // segfaults on a truncated binary PLY), so check them first.
     if (scene != nullptr) {

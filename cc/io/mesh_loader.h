@@ -29,12 +29,16 @@
 
 #include "absl/status/statusor.h"
 #include "cc/geometry/triangle.h"
+#include "cc/io/mesh_input.h"
 
 namespace kdtree {
 
 struct LoadOptions {
   // Drop triangles of exactly zero area (collinear or coincident vertices).
   bool drop_degenerate = true;
+  // Largest file, or inflated .gz, accepted (mesh_input.h): a larger input is
+  // refused before it is read or inflated past this.
+  size_t max_input_bytes = kMeshInputBudget;
 };
 
 struct LoadReport {
@@ -52,9 +56,11 @@ struct LoadReport {
 // Coordinates with a larger magnitude are treated as garbage.
 inline constexpr float kMaxAbsCoordinate = 1e30f;
 
-// Loads `path`. A name ending in ".gz" (any case) is decompressed in memory and
-// parsed with the inner extension as the format hint ("x.ply.gz" -> "ply").
-// Errors name the file and the reason: missing, unreadable, corrupt gzip,
+// Loads `path`, opened once (mesh_input.h): a regular file, a pipe or a
+// process substitution. A name ending in ".gz" (any case) is decompressed in
+// memory and parsed with the inner extension as the format hint
+// ("x.ply.gz" -> "ply"). Errors name the file and the reason: missing, a
+// directory or device, over the input budget, unreadable, corrupt gzip,
 // assimp's error string, or no triangles left. Never aborts on bad input.
 absl::StatusOr<TriangleSoup> LoadMesh(const std::string& path, LoadReport* report = nullptr,
                                       const LoadOptions& options = LoadOptions());

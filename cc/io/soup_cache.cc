@@ -264,7 +264,12 @@ absl::StatusOr<std::string> SoupCachePath(const std::string& mesh_path,
 absl::StatusOr<TriangleSoup> LoadMeshCached(const std::string& mesh_path,
                                             const std::string& cache_dir, LoadReport* report,
                                             const LoadOptions& options) {
-  if (cache_dir.empty()) return LoadMesh(mesh_path, report, options);
+  // Only a regular file has a size and time that say its bytes are the same;
+  // a pipe or process substitution is loaded (once) and never cached.
+  struct stat st;
+  if (cache_dir.empty() || ::stat(mesh_path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+    return LoadMesh(mesh_path, report, options);
+  }
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&start] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -43,7 +43,8 @@ absl::StatusOr<TriangleSoup> ReadSoupCache(const std::string& path);
 // time (plus the load options). A valid cache entry is returned directly
 // (report->from_cache = true); otherwise the mesh is loaded and the cache
 // written. An invalid entry or an unwritable cache is not an error: the mesh is
-// loaded and report->cache_warning says what happened.
+// loaded and report->cache_warning says what happened. Anything but a regular
+// file (a pipe, a process substitution) is loaded by LoadMesh, never cached.
 absl::StatusOr<TriangleSoup> LoadMeshCached(const std::string& mesh_path,
                                             const std::string& cache_dir,
                                             LoadReport* report = nullptr,

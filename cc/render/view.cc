@@ -246,6 +246,10 @@ absl::Status View::Validate(const std::string& where) const {
   if (width < 1 || height < 1 || width > 16384 || height > 16384) {
     return bad("resolution must be between 1 and 16384");
   }
+  if (lights.size() > kMaxLights) {
+    return bad(absl::StrCat("at most ", kMaxLights, " lights (a ray record's light index has 16 bits); got ",
+                            lights.size()));
+  }
   for (const PointLight& l : lights) {
     if (!IsFinite(l.position)) return bad("light position must be finite");
   }
@@ -298,6 +302,28 @@ View AutoView(const AABB& bounds) {
   view.camera.fov_deg = fov;
   view.lights.push_back(PointLight{c + (side * 0.5f + up * 1.5f + front * 1.0f) * r});
   return view;
+}
+
+absl::Status CheckSceneScale(const AABB& bounds) {
+  if (!bounds.Valid()) return absl::InvalidArgumentError("the scene has no bounds (no triangles?)");
+  double extent = 0, magnitude = 0;
+  for (int a = 0; a < 3; ++a) {
+    extent = std::fmax(extent, static_cast<double>(bounds.hi[a]) - bounds.lo[a]);
+    magnitude = std::fmax(magnitude, std::fmax(std::fabs(bounds.lo[a]), std::fabs(bounds.hi[a])));
+  }
+  if (extent < kMinSceneExtent || extent > kMaxSceneExtent) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the scene spans %g, outside [%g, %g], the sizes single-precision ray tracing handles "
+        "(products of coordinates would %s): scale the mesh",
+        extent, kMinSceneExtent, kMaxSceneExtent, extent < kMinSceneExtent ? "underflow" : "overflow"));
+  }
+  if (extent < kMinRelativeExtent * magnitude) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the scene spans %g at a distance of %g from the origin, less than %g of it: its "
+        "coordinates keep too few bits to trace (translate the mesh towards the origin)",
+        extent, magnitude, kMinRelativeExtent));
+  }
+  return absl::OkStatus();
 }
 
 }  // namespace kdtree

@@ -25,6 +25,7 @@
 #ifndef KDTREE_CC_RENDER_VIEW_H_
 #define KDTREE_CC_RENDER_VIEW_H_
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,10 @@ struct AmbientOcclusion {
   bool enabled() const { return samples > 0; }
 };
 
+// The most lights a view may have: a ray record's light index
+// (cc/render/ray_record.h, and the ray dump's) is 16 bits wide.
+inline constexpr size_t kMaxLights = 65535;
+
 struct View {
   CameraSpec camera;
   int width = 800;
@@ -59,8 +64,9 @@ struct View {
   AmbientOcclusion ao;
 
   // Camera not degenerate (eye != look_at, up not along the view direction),
-  // 0 < fov < 180, 1 <= width, height <= 16384, AO samples in [0, 4096] with
-  // distance > 0 when on, everything finite. `where` prefixes the message.
+  // 0 < fov < 180, 1 <= width, height <= 16384, at most kMaxLights lights, AO
+  // samples in [0, 4096] with distance > 0 when on, everything finite. `where`
+  // prefixes the message.
   absl::Status Validate(const std::string& where) const;
 };
 
@@ -80,6 +86,17 @@ std::string ViewToText(const View& view);
 // half diagonal. The same rule as data/fetch.py's camera_from_bounds for
 // objects, so a scene without a manifest camera looks the same either way.
 View AutoView(const AABB& bounds);
+
+// Whether rays in single precision can trace a scene of these bounds: its
+// largest extent must lie in [kMinSceneExtent, kMaxSceneExtent] (the
+// triangle tests multiply coordinate differences: below, products underflow
+// and every ray misses; above, they overflow) and be at least
+// kMinRelativeExtent of its largest coordinate's magnitude (else its
+// vertices and the camera collapse onto few float values). Error: "the scene
+// spans E ... " with the bound it breaks (issue 24: numeric extremes).
+inline constexpr double kMinSceneExtent = 1e-15, kMaxSceneExtent = 1e15;
+inline constexpr double kMinRelativeExtent = 1e-6;
+absl::Status CheckSceneScale(const AABB& bounds);
 
 }  // namespace kdtree
 

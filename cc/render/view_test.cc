@@ -76,6 +76,29 @@ TEST(ViewParser, MalformedFilesNameLineAndReason) {
   }
 }
 
+TEST(ViewParser, NoMoreLightsThanARayRecordCanNumber) {
+  std::string text = "camera { position 0 0 5 look_at 0 0 0 }\n";
+  for (size_t i = 0; i < kMaxLights; ++i) text += "light { position 1 2 3 }\n";
+  EXPECT_TRUE(ParseView(text, "v.view").ok());
+  text += "light { position 1 2 3 }\n";
+  absl::StatusOr<View> v = ParseView(text, "v.view");
+  ASSERT_FALSE(v.ok());
+  EXPECT_NE(v.status().message().find("at most 65535 lights"), std::string::npos) << v.status();
+}
+
+TEST(CheckSceneScale, RefusesScenesFloatsCannotTrace) {
+  const auto box = [](float lo, float hi) { return AABB{Vec3(lo, lo, lo), Vec3(hi, hi, hi)}; };
+  EXPECT_TRUE(CheckSceneScale(box(-1, 1)).ok());
+  EXPECT_TRUE(CheckSceneScale(box(1.5e5f - 10, 1.5e5f + 10)).ok());  // the offset sphere
+  const absl::Status tiny = CheckSceneScale(box(0, 1e-30f));
+  EXPECT_NE(tiny.message().find("would underflow"), std::string::npos) << tiny;
+  const absl::Status huge = CheckSceneScale(box(-1e30f, 1e30f));
+  EXPECT_NE(huge.message().find("would overflow"), std::string::npos) << huge;
+  const absl::Status far = CheckSceneScale(box(1e20f, 1e20f + 1e13f));
+  EXPECT_NE(far.message().find("too few bits"), std::string::npos) << far;
+  EXPECT_FALSE(CheckSceneScale(AABB()).ok());
+}
+
 TEST(ViewParser, TextRoundTrip) {
   View v;
   v.camera.position = Vec3(0.1f, 0.2f, 0.3f);

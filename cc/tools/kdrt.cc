@@ -100,6 +100,8 @@ ABSL_FLAG(bool, fast_render, false,
           "pixels, shadow rays leaving their origin triangle untested): record field "
           "fast_render, held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
+ABSL_FLAG(uint64_t, max_mesh_bytes, kdtree::kMeshInputBudget,
+          "Largest mesh file, or inflated .gz, to read (cc/io/mesh_input.h); larger ones are refused.");
 
 namespace kdtree {
 namespace {
@@ -189,8 +191,14 @@ absl::Status Run() {
   if (absl::Status st = lock.HoldShared(); !st.ok()) return st;
   progress.Step("loading mesh");
   LoadReport load;
-  absl::StatusOr<TriangleSoup> soup = LoadMeshCached(mesh, FromWorkspace(absl::GetFlag(FLAGS_cache_dir)), &load);
+  LoadOptions load_options;
+  load_options.max_input_bytes = absl::GetFlag(FLAGS_max_mesh_bytes);
+  absl::StatusOr<TriangleSoup> soup =
+      LoadMeshCached(mesh, FromWorkspace(absl::GetFlag(FLAGS_cache_dir)), &load, load_options);
   if (!soup.ok()) return soup.status();
+  if (absl::Status st = CheckSceneScale(soup->Bounds()); !st.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat(mesh, ": ", st.message()));
+  }
   if (!load.cache_warning.empty()) std::fprintf(stderr, "kdrt: warning: %s\n", load.cache_warning.c_str());
   if (!absl::GetFlag(FLAGS_view).empty()) {
     absl::StatusOr<View> v = LoadViewFile(FromInvocationDir(absl::GetFlag(FLAGS_view)));
@@ -287,6 +295,10 @@ absl::Status Run() {
     return st;
   }
   Json rec = {{"scene", scene}, {"mesh", mesh}, {"n_tri", soup->size()}, {"load_s", load.load_seconds},
+              {"dropped_at_load",
+               {{"nonfinite", load.dropped_nonfinite},
+                {"degenerate", load.dropped_degenerate},
+                {"point_line_faces", load.skipped_faces}}},
               {"preset", rc->preset}, {"label", rc->label},
               {"env_file", rc->env_path.empty() ? Json() : Json(rc->env_path)},
               {"overrides", rc->overrides}, {"config", ConfigJson(rc->config)},

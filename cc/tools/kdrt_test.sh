@@ -35,6 +35,12 @@ VIEW
 # A budget of ~0 s: every timed step runs once although --repeats=4.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=4 --repeat_budget_s=1e-12 --cache_dir= \
   --embree=medium > budget.json
+# Triangles left out at load are counted in the record by reason; the mesh
+# arrives through a process substitution (a pipe, read once).
+{ cat scene.obj; printf 'v 1e31 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n';
+  printf 'v 0 0 0\nv 1 1 1\nv 2 2 2\nf -3 -2 -1\n'; } > dropped.obj
+"$KDRT" --mesh=<(cat dropped.obj) --view=lit.view --repeats=1 --cache_dir=data/cache/soups \
+  > dropped.json
 if "$KDRT" --mesh=scene.obj --preset=bogus --cache_dir= > /dev/null 2> err.txt; then
   echo "bad preset accepted"; exit 1
 fi
@@ -52,7 +58,7 @@ test $(( (size - 40) % 56 )) -eq 0
 # required one with its type, and no other (analysis/record_schema.py).
 /usr/bin/python3 "$RUNFILES/analysis/record_schema.py" \
   --schema "$RUNFILES/cc/tools/kdrt_record.schema.json" --sections kdrt \
-  lit.json dark.json lit2.json lit1.json budget.json out/results.jsonl
+  lit.json dark.json lit2.json lit1.json budget.json dropped.json out/results.jsonl
 /usr/bin/python3 -c 'import json; r = json.load(open("lit.json")); r["surprise"] = 1
 print(json.dumps(r))' > undeclared.json
 if /usr/bin/python3 "$RUNFILES/analysis/record_schema.py" \
@@ -71,6 +77,11 @@ def check(cond, msg):
     if not cond:
         raise SystemExit("FAIL: " + msg)
 check(lit["scene"] == "scene" and lit["n_tri"] == 10, "scene / n_tri")
+none = {"nonfinite": 0, "degenerate": 0, "point_line_faces": 0}
+check(lit["dropped_at_load"] == none, "nothing dropped")
+dropped = json.load(open("dropped.json"))
+check(dropped["n_tri"] == 10 and dropped["dropped_at_load"] == dict(none, nonfinite=1, degenerate=1),
+      "dropped triangles counted by reason")
 check(len(lit["T_B_runs"]) == 2 and len(lit["T_R_runs"]) == 2, "runs")
 check(lit["P_hit"] + lit["P_miss"] == 64 * 48, "primary count")
 check(lit["S_hit"] + lit["S_miss"] == lit["P_hit"], "one shadow ray per hit")

@@ -1,0 +1,148 @@
+#include "cc/io/mesh_input.h"
+
+#include <zlib.h>
+
+#include <cstring>
+#include <new>
+#include <utility>
+
+#include "absl/status/status.h"
+#include "absl/strings/ascii.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "cc/base/read_file.h"
+
+namespace kdtree {
+namespace {
+
+absl::Status FileError(absl::StatusCode code, const std::string& path, const std::string& why) {
+  return absl::Status(code, absl::StrCat(path, ": ", why));
+}
+
+std::string BudgetNote(size_t max_bytes) {
+  return absl::StrCat("the input budget of ", max_bytes,
+                      " bytes (LoadOptions::max_input_bytes; kdrt --max_mesh_bytes)");
+}
+
+bool IsGzip(absl::string_view bytes) {
+  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
+         static_cast<unsigned char>(bytes[1]) == 0x8b;
+}
+
+// Inflates every gzip member of `gz` into `out`, stopping past max_bytes.
+absl::Status Inflate(const std::string& gz, const std::string& path, size_t max_bytes,
+                     std::string* out) {
+  if (!IsGzip(gz)) {
+    return FileError(absl::StatusCode::kInvalidArgument, path,
+                     "name ends in .gz but the file is not gzip-compressed");
+  }
+  z_stream zs;
+  std::memset(&zs, 0, sizeof(zs));
+  if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) {
+    return FileError(absl::StatusCode::kInternal, path, "zlib cannot start inflating");
+  }
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(gz.data()));
+  zs.avail_in = static_cast<uInt>(gz.size());
+  static thread_local char chunk[1 << 20];
+  absl::Status st;
+  for (;;) {
+    zs.next_out = reinterpret_cast<Bytef*>(chunk);
+    zs.avail_out = sizeof(chunk);
+    const int rc = inflate(&zs, Z_NO_FLUSH);
+    const size_t n = sizeof(chunk) - zs.avail_out;
+    if (out->size() + n > max_bytes) {
+      st = FileError(absl::StatusCode::kResourceExhausted, path,
+                     absl::StrCat("inflates to more than ", BudgetNote(max_bytes)));
+      break;
+    }
+    out->append(chunk, n);
+    if (rc == Z_STREAM_END) {
+      if (zs.avail_in == 0) break;
+      inflateReset(&zs);  // another gzip member follows
+    } else if (rc != Z_OK && !(rc == Z_BUF_ERROR && n > 0)) {
+      const char* why = rc == Z_BUF_ERROR ? "unexpected end of file" : zs.msg;
+      st = FileError(absl::StatusCode::kDataLoss, path,
+                     absl::StrCat("corrupt or truncated gzip data (zlib: ",
+                                  why != nullptr ? why : "unknown error", ")"));
+      break;
+    }
+  }
+  inflateEnd(&zs);
+  if (st.ok() && out->empty()) {
+    st = FileError(absl::StatusCode::kInvalidArgument, path, "file is empty after gzip decompression");
+  }
+  return st;
+}
+
+bool NeedsSyntaxCheck(const std::string& format) {
+  return format == "obj" || format == "off" || format == "ply";
+}
+
+}  // namespace
+
+std::string Extension(absl::string_view path) {
+  const size_t slash = path.find_last_of('/');
+  const size_t start = slash == absl::string_view::npos ? 0 : slash + 1;
+  const size_t dot = path.find_last_of('.');
+  if (dot == absl::string_view::npos || dot < start || dot + 1 == path.size()) return "";
+  return absl::AsciiStrToLower(path.substr(dot + 1));
+}
+
+std::string SniffMeshFormat(absl::string_view bytes) {
+  if (absl::StartsWith(bytes, "glTF")) return "glb";
+  const size_t end = bytes.find_first_of("\r\n");
+  const absl::string_view first = absl::StripAsciiWhitespace(bytes.substr(0, end));
+  if (first == "ply") return "ply";
+  if (absl::EndsWith(first.substr(0, first.find_first_of(" \t")), "OFF")) return "off";
+  // OBJ: the first statement that is not a comment or blank.
+  for (absl::string_view rest = bytes; !rest.empty();) {
+    const size_t eol = rest.find('\n');
+    const absl::string_view line = absl::StripAsciiWhitespace(rest.substr(0, eol));
+    rest = eol == absl::string_view::npos ? absl::string_view() : rest.substr(eol + 1);
+    if (line.empty() || line[0] == '#') continue;
+    const absl::string_view word = line.substr(0, line.find_first_of(" \t"));
+    for (const char* w : {"v", "vn", "vt", "f", "o", "g", "s", "mtllib", "usemtl"}) {
+      if (word == w) return "obj";
+    }
+    return "";
+  }
+  return "";
+}
+
+absl::StatusOr<MeshInput> ReadMeshInput(const std::string& path, size_t max_bytes) {
+  absl::StatusOr<InputFile> in = InputFile::Open(path, "mesh file");
+  if (!in.ok()) return in.status();
+  if (in->regular() && in->size() == 0) {
+    return FileError(absl::StatusCode::kInvalidArgument, path, "file is empty");
+  }
+  if (in->regular() && in->size() > max_bytes) {
+    return FileError(absl::StatusCode::kResourceExhausted, path,
+                     absl::StrCat("is ", in->size(), " bytes, more than ", BudgetNote(max_bytes)));
+  }
+  MeshInput m;
+  const bool gz_name = absl::EndsWithIgnoreCase(path, ".gz");
+  m.format = Extension(gz_name ? path.substr(0, path.size() - 3) : path);
+  m.in_memory = gz_name || !in->regular();
+  if (!m.in_memory && !NeedsSyntaxCheck(m.format)) return m;  // the importer reads it
+  try {
+    absl::StatusOr<std::string> raw = in->ReadAll(max_bytes);
+    if (!raw.ok()) return raw.status();
+    if (raw->empty()) return FileError(absl::StatusCode::kInvalidArgument, path, "file is empty");
+    if (gz_name || (!in->regular() && IsGzip(*raw))) {
+      if (absl::Status st = Inflate(*raw, path, max_bytes, &m.bytes); !st.ok()) return st;
+    } else {
+      m.bytes = *std::move(raw);
+    }
+  } catch (const std::bad_alloc&) {
+    return FileError(absl::StatusCode::kResourceExhausted, path, "out of memory while reading");
+  }
+  if (m.in_memory && m.format.empty()) m.format = SniffMeshFormat(m.bytes);
+  if (m.in_memory && m.format.empty()) {
+    return FileError(absl::StatusCode::kInvalidArgument, path,
+                     "cannot tell the mesh format: the name has no extension and the bytes are "
+                     "not gzip, PLY, OFF, binary glTF or OBJ");
+  }
+  return m;
+}
+
+}  // namespace kdtree
