@@ -117,6 +117,15 @@ void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* o
 
 }  // namespace
 
+uint64_t RenderBytes(const View& view, const RenderOptions& options) {
+  const uint64_t pixels = static_cast<uint64_t>(view.width) * static_cast<uint64_t>(view.height);
+  const uint64_t lights = options.cast_shadow_rays ? view.lights.size() : 0;
+  const uint64_t ao = view.ao.enabled() ? static_cast<uint64_t>(view.ao.samples) : 0;
+  uint64_t per_pixel = sizeof(Hit) + 3 + lights + (ao > 0 ? sizeof(uint16_t) : 0);
+  if (options.record_rays) per_pixel += (1 + lights + ao) * sizeof(RayRecord);
+  return pixels * per_pixel;
+}
+
 RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& view,
                     const RenderOptions& options) {
   std::unique_ptr<tbb::global_control> cap;

@@ -39,6 +39,18 @@ RenderResult RenderKd(const View& view, int threads, bool record) {
   return Render(Scene().soup, tracer, view, opt);
 }
 
+TEST(RenderBytes, CountsWhatRenderAllocatesAtWorst) {
+  View view;  // 800 x 800
+  view.lights.resize(2);
+  RenderOptions options;
+  const uint64_t pixels = 800 * 800;
+  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + 2));
+  options.record_rays = true;  // a primary and two shadow rays per pixel
+  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + 2 + 3 * sizeof(RayRecord)));
+  options.cast_shadow_rays = false;
+  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + sizeof(RayRecord)));
+}
+
 TEST(Renderer, NoLightTracesNoShadowRays) {
   const RenderResult r = RenderKd(testing::SphereView(64, 48, 1.0f, /*with_light=*/false), 1, true);
   EXPECT_EQ(r.primary.rays, 64u * 48u);

@@ -46,6 +46,7 @@
 #include "absl/strings/str_join.h"
 #include "cc/base/json_line.h"
 #include "cc/base/median.h"
+#include "cc/base/memory_budget.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/embree/embree_tracer.h"
@@ -100,6 +101,8 @@ ABSL_FLAG(bool, fast_render, false,
           "pixels, shadow rays leaving their origin triangle untested): record field "
           "fast_render, held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
+ABSL_FLAG(double, memory_budget_gb, 0,
+          "Memory a run may use before it is refused (GB; 0 = half of physical memory).");
 ABSL_FLAG(uint64_t, max_mesh_bytes, kdtree::kMeshInputBudget,
           "Largest mesh file, or inflated .gz, to read (cc/io/mesh_input.h); larger ones are refused.");
 
@@ -131,6 +134,26 @@ Json ConfigJson(const Config& c) {
           {"bins", c.bins},                   {"use_clipping", c.use_clipping},
           {"use_pruning", c.use_pruning},     {"cast_shadow_rays", c.cast_shadow_rays},
           {"seed_compatible", c.seed_compatible}};
+}
+
+// What the renders hold at once, checked before anything is built (issue 24):
+// the recording render with every ray, the last image of each of up to three
+// timed lanes (the kd-tree, its fast mode, Embree), and the soup.
+absl::Status CheckRunMemory(const View& view, const Config& config, size_t triangles) {
+  RenderOptions recording;
+  recording.cast_shadow_rays = config.cast_shadow_rays;
+  recording.record_rays = true;
+  RenderOptions lane = recording;
+  lane.record_rays = false;
+  const uint64_t need = RenderBytes(view, recording) + 3 * RenderBytes(view, lane) +
+                        uint64_t{triangles} * 3 * sizeof(Vec3);
+  const double gb = absl::GetFlag(FLAGS_memory_budget_gb);
+  const uint64_t budget = gb > 0 ? static_cast<uint64_t>(gb * 1e9) : DefaultMemoryBudget();
+  return CheckMemoryBudget(need, budget,
+                           absl::StrFormat("rendering %dx%d with %zu lights%s and recording every ray",
+                                           view.width, view.height, view.lights.size(),
+                                           view.ao.enabled() ? " and ambient occlusion" : ""),
+                           "kdrt --memory_budget_gb");
 }
 
 absl::Status Run() {
@@ -209,6 +232,8 @@ absl::Status Run() {
     view = AutoView(soup->Bounds());
     view_source = "auto";
   }
+
+  if (absl::Status st = CheckRunMemory(view, rc->config, soup->size()); !st.ok()) return st;
 
   progress.Phase("load");
   // Everything untimed first, then the timed rounds in one stretch under the
