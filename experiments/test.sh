@@ -7,4 +7,6 @@ bash experiments/setup.sh --with-blender
 /usr/bin/python3 data/fetch.py --profile test || echo "test scenes unavailable; tests fall back to generated meshes"
 # The Stanford bunny of the scene library joins the brute-force comparison
 # when present (cc/kdtree/traversal_test.cc falls back to a generated mesh).
+# No tracked file may send a reader outside the repository.
+/usr/bin/python3 experiments/self_contained.py
 bazel test //... --test_env=KDTREE_SCENES="$PWD/data/cache/scenes" "$@"
