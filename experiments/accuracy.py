@@ -11,7 +11,8 @@ and options and is appended to OUT/results/accuracy.jsonl (append-only; a
 failure is appended as {"ok": false, ...}). Resumable: a (scene, step,
 repeats) already recorded with "ok": true is skipped. --jobs kdrt processes
 run at once (default: the profile's "jobs", else 1), like the matrix's: their
-untimed work overlaps, their timed steps never do (cc/base/timing_lock.h). Reuses
+untimed work overlaps, their timed steps never do (cc/base/timing_lock.h);
+records are appended as runs end. Reuses
 experiments/run_matrix.py's record and host helpers. Standard library only.
 """
 
@@ -140,7 +141,7 @@ def main(argv=None):
     pending = [(scene, step) for scene, step in jobs
                if tuple(job_key(scene, step, profile["repeats"], tree))
                not in done]
-    jobs_at_once = max(1, args.jobs or profile.get("jobs", 1))
+    jobs_at_once = max(1, min(args.jobs or profile.get("jobs", 1), len(pending)))
 
     def one(job):
         rec = run_one(os.path.abspath(args.kdrt), job[0], job[1], profile,
@@ -148,8 +149,13 @@ def main(argv=None):
         rec["concurrent_jobs"] = jobs_at_once
         return rec
 
-    with concurrent.futures.ThreadPoolExecutor(jobs_at_once) as pool:
-        for i, rec in enumerate(pool.map(one, pending)):
+    # Each record is appended as its run ends; on an interrupt the runs not
+    # started are dropped (those running finish: kdrt is not killed mid-way).
+    pool = concurrent.futures.ThreadPoolExecutor(jobs_at_once)
+    try:
+        futures = [pool.submit(one, job) for job in pending]
+        for i, fut in enumerate(concurrent.futures.as_completed(futures)):
+            rec = fut.result()
             run_matrix.append_record(results_path, rec)
             failed += not rec["ok"]
             print("accuracy: [%d/%d] %s / %s: %s" % (
@@ -158,6 +164,8 @@ def main(argv=None):
                     rec["T_B"], rec["T_R"], rec.get("sah_cost", float("nan")))
                 if rec["ok"] else "FAILED (%s)" % rec["error"][-300:]),
                 file=sys.stderr)
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
     return 1 if failed else 0
 
 

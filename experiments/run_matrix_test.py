@@ -158,7 +158,7 @@ class RunMatrixTest(unittest.TestCase):
         # Temporary kdrt directories are removed; the env files stay.
         self.assertEqual(sorted(os.listdir(out)), ["accuracy"])
 
-    def test_accuracy_runs_the_profiles_jobs_at_once_in_order(self):
+    def test_accuracy_runs_the_profiles_jobs_at_once(self):
         out = os.path.join(self.tmp.name, "out")
         study = os.path.join(self.tmp.name, "accuracy.json")
         steps = [{"knob": "bins", "step": "bins %d" % n, "preset": "sah-binned-32",
@@ -173,7 +173,7 @@ class RunMatrixTest(unittest.TestCase):
         self.assertEqual(accuracy.main(args), 0)
         with open(os.path.join(out, "results", "accuracy.jsonl")) as f:
             recs = [json.loads(line) for line in f]
-        self.assertEqual([r["step"] for r in recs], ["bins 4", "bins 8", "bins 16"])
+        self.assertEqual(sorted(r["step"] for r in recs), ["bins 16", "bins 4", "bins 8"])
         self.assertEqual({r["concurrent_jobs"] for r in recs}, {2})
         self.assertEqual(accuracy.main(args), 0)  # all done: nothing reruns
         with open(os.path.join(out, "results", "accuracy.jsonl")) as f:

@@ -16,8 +16,10 @@ namespace kdtree {
 absl::StatusOr<InputFile> InputFile::Open(const std::string& path, const std::string& what) {
   const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
-    const std::string msg = absl::StrCat(path, ": cannot open ", what, ": ", std::strerror(errno));
-    return errno == ENOENT ? absl::NotFoundError(msg) : absl::InvalidArgumentError(msg);
+    const int err = errno;
+    const std::string msg = absl::StrCat(path, ": cannot open ", what, ": ", std::strerror(err));
+    if (err == ENOENT || err == ENOTDIR) return absl::NotFoundError(msg);
+    return err == EACCES ? absl::PermissionDeniedError(msg) : absl::InvalidArgumentError(msg);
   }
   InputFile in(path, what, fd, false, 0);
   struct stat st;
@@ -43,7 +45,7 @@ InputFile::~InputFile() {
 
 absl::StatusOr<std::string> InputFile::ReadAll(size_t max_bytes) {
   const auto too_long = [&] {
-    return absl::InvalidArgumentError(absl::StrCat(path_, ": ", what_, " is longer than ", max_bytes, " bytes"));
+    return absl::ResourceExhaustedError(absl::StrCat(path_, ": ", what_, " is longer than ", max_bytes, " bytes"));
   };
   if (regular_ && size_ > max_bytes) return too_long();
   std::string out;

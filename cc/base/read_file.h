@@ -24,7 +24,8 @@ class InputFile {
   // Opens `path` (a pipe blocks here until it has a writer, as `cat` does).
   // `what` names the input in messages ("environment file"):
   // "PATH: the WHAT is a directory", "PATH: the WHAT is a device",
-  // "PATH: cannot open WHAT: REASON" (NotFound when it does not exist).
+  // "PATH: cannot open WHAT: REASON" (NotFound when it does not exist,
+  // PermissionDenied when it may not be read).
   static absl::StatusOr<InputFile> Open(const std::string& path, const std::string& what);
 
   InputFile(InputFile&& o) noexcept;
@@ -39,8 +40,9 @@ class InputFile {
   uint64_t size() const { return size_; }
   int fd() const { return fd_; }
 
-  // The remaining bytes: "PATH: WHAT is longer than N bytes" past the budget
-  // (a regular file is refused by its size before anything is read),
+  // The remaining bytes: "PATH: WHAT is longer than N bytes"
+  // (ResourceExhausted) past the budget (a regular file is refused by its
+  // size before anything is read),
   // "PATH: read error: REASON".
   absl::StatusOr<std::string> ReadAll(size_t max_bytes);
 

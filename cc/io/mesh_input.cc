@@ -2,9 +2,11 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstring>
 #include <new>
 #include <utility>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/ascii.h"
@@ -13,11 +15,16 @@
 #include "cc/base/read_file.h"
 
 namespace kdtree {
-namespace {
 
 absl::Status FileError(absl::StatusCode code, const std::string& path, const std::string& why) {
   return absl::Status(code, absl::StrCat(path, ": ", why));
 }
+
+bool NeedsSyntaxCheck(const std::string& format) {
+  return format == "obj" || format == "off" || format == "ply";
+}
+
+namespace {
 
 std::string BudgetNote(size_t max_bytes) {
   return absl::StrCat("the input budget of ", max_bytes,
@@ -29,53 +36,66 @@ bool IsGzip(absl::string_view bytes) {
          static_cast<unsigned char>(bytes[1]) == 0x8b;
 }
 
-// Inflates every gzip member of `gz` into `out`, stopping past max_bytes.
-absl::Status Inflate(const std::string& gz, const std::string& path, size_t max_bytes,
+// A zlib inflate stream, ended on every return path.
+struct Inflater {
+  z_stream zs;
+  bool ok;
+  Inflater() {
+    std::memset(&zs, 0, sizeof(zs));
+    ok = inflateInit2(&zs, 16 + MAX_WBITS) == Z_OK;  // gzip members only
+  }
+  ~Inflater() {
+    if (ok) inflateEnd(&zs);
+  }
+};
+
+// Inflates the gzip members of `gz` into `out`, stopping past max_bytes.
+// Bytes after the last member that do not start another one are ignored, as
+// zlib's gzread does.
+absl::Status Inflate(absl::string_view gz, const std::string& path, size_t max_bytes,
                      std::string* out) {
   if (!IsGzip(gz)) {
     return FileError(absl::StatusCode::kInvalidArgument, path,
                      "name ends in .gz but the file is not gzip-compressed");
   }
-  z_stream zs;
-  std::memset(&zs, 0, sizeof(zs));
-  if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) {
-    return FileError(absl::StatusCode::kInternal, path, "zlib cannot start inflating");
-  }
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(gz.data()));
-  zs.avail_in = static_cast<uInt>(gz.size());
-  static thread_local char chunk[1 << 20];
-  absl::Status st;
+  Inflater in;
+  if (!in.ok) return FileError(absl::StatusCode::kResourceExhausted, path, "zlib cannot start inflating");
+  z_stream& zs = in.zs;
+  std::vector<char> chunk(size_t{1} << 20);
+  size_t fed = 0;  // bytes of gz handed to zlib so far
   for (;;) {
-    zs.next_out = reinterpret_cast<Bytef*>(chunk);
-    zs.avail_out = sizeof(chunk);
+    if (zs.avail_in == 0 && fed < gz.size()) {  // zlib counts in 32 bits: feed in pieces
+      const size_t n = std::min<size_t>(gz.size() - fed, size_t{1} << 30);
+      zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(gz.data() + fed));
+      zs.avail_in = static_cast<uInt>(n);
+      fed += n;
+    }
+    zs.next_out = reinterpret_cast<Bytef*>(chunk.data());
+    zs.avail_out = static_cast<uInt>(chunk.size());
     const int rc = inflate(&zs, Z_NO_FLUSH);
-    const size_t n = sizeof(chunk) - zs.avail_out;
+    const size_t n = chunk.size() - zs.avail_out;
     if (out->size() + n > max_bytes) {
-      st = FileError(absl::StatusCode::kResourceExhausted, path,
-                     absl::StrCat("inflates to more than ", BudgetNote(max_bytes)));
-      break;
+      return FileError(absl::StatusCode::kResourceExhausted, path,
+                       absl::StrCat("inflates to more than ", BudgetNote(max_bytes)));
     }
-    out->append(chunk, n);
+    out->append(chunk.data(), n);
     if (rc == Z_STREAM_END) {
-      if (zs.avail_in == 0) break;
+      const size_t left = zs.avail_in + (gz.size() - fed);
+      if (!IsGzip(gz.substr(gz.size() - left))) break;  // the end, or trailing bytes
       inflateReset(&zs);  // another gzip member follows
-    } else if (rc != Z_OK && !(rc == Z_BUF_ERROR && n > 0)) {
+    } else if (rc == Z_MEM_ERROR) {
+      return FileError(absl::StatusCode::kResourceExhausted, path, "out of memory while inflating");
+    } else if (rc != Z_OK) {
       const char* why = rc == Z_BUF_ERROR ? "unexpected end of file" : zs.msg;
-      st = FileError(absl::StatusCode::kDataLoss, path,
-                     absl::StrCat("corrupt or truncated gzip data (zlib: ",
-                                  why != nullptr ? why : "unknown error", ")"));
-      break;
+      return FileError(absl::StatusCode::kDataLoss, path,
+                       absl::StrCat("corrupt or truncated gzip data (zlib: ",
+                                    why != nullptr ? why : "unknown error", ")"));
     }
   }
-  inflateEnd(&zs);
-  if (st.ok() && out->empty()) {
-    st = FileError(absl::StatusCode::kInvalidArgument, path, "file is empty after gzip decompression");
+  if (out->empty()) {
+    return FileError(absl::StatusCode::kInvalidArgument, path, "file is empty after gzip decompression");
   }
-  return st;
-}
-
-bool NeedsSyntaxCheck(const std::string& format) {
-  return format == "obj" || format == "off" || format == "ply";
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -126,6 +146,10 @@ absl::StatusOr<MeshInput> ReadMeshInput(const std::string& path, size_t max_byte
   if (!m.in_memory && !NeedsSyntaxCheck(m.format)) return m;  // the importer reads it
   try {
     absl::StatusOr<std::string> raw = in->ReadAll(max_bytes);
+    if (absl::IsResourceExhausted(raw.status())) {
+      return FileError(absl::StatusCode::kResourceExhausted, path,
+                       absl::StrCat("is longer than ", BudgetNote(max_bytes)));
+    }
     if (!raw.ok()) return raw.status();
     if (raw->empty()) return FileError(absl::StatusCode::kInvalidArgument, path, "file is empty");
     if (gz_name || (!in->regular() && IsGzip(*raw))) {

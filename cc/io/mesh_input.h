@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <string>
 
+#include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 
@@ -31,12 +32,21 @@ struct MeshInput {
                            // is checked by CheckMeshSyntax (obj, off, ply)
 };
 
-// Errors name the path: "file is empty", "the mesh file is a directory",
-// "is N bytes, more than the input budget of M bytes", "inflates to more than
-// M bytes", "corrupt or truncated gzip data", "name ends in .gz but the file
-// is not gzip-compressed", "cannot tell the mesh format".
+// Errors name the path: "file is empty", "the mesh file is a directory" (or
+// "a device"), "cannot open mesh file" (NotFound, PermissionDenied), over the
+// budget (ResourceExhausted): "is N bytes, more than the input budget of M
+// bytes", "is longer than..." (a pipe), "inflates to more than...";
+// "corrupt or truncated gzip data", "name ends in .gz but the file is not
+// gzip-compressed", "cannot tell the mesh format".
 absl::StatusOr<MeshInput> ReadMeshInput(const std::string& path,
                                         size_t max_bytes = kMeshInputBudget);
+
+// The error of every mesh input problem: "PATH: WHY".
+absl::Status FileError(absl::StatusCode code, const std::string& path, const std::string& why);
+
+// The formats whose syntax CheckMeshSyntax checks before assimp reads them
+// (mesh_syntax.h): obj, off, ply.
+bool NeedsSyntaxCheck(const std::string& format);
 
 // Lower-case extension of the file name without the dot ("" when none).
 std::string Extension(absl::string_view path);

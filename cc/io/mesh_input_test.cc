@@ -123,6 +123,24 @@ TEST(MeshInput, EveryGzipMemberIsRead) {
   EXPECT_EQ(soup->size(), 4u);
 }
 
+TEST(MeshInput, BytesAfterTheLastGzipMemberAreIgnored) {
+  // As zlib's gzread does (some tools pad files with zeros).
+  const std::string path = Gzip("padded.obj.gz", kQuad);
+  std::ofstream(path, std::ios::binary | std::ios::app) << std::string(16, '\0');
+  absl::StatusOr<TriangleSoup> soup = LoadMesh(path);
+  ASSERT_TRUE(soup.ok()) << soup.status();
+  EXPECT_EQ(soup->size(), 2u);
+}
+
+TEST(MeshInput, APipeOverTheBudgetIsRefusedWithTheBudget) {
+  Fifo fifo("big_pipe.obj", kQuad);  // fits the pipe's buffer: the writer never blocks
+  LoadOptions options;
+  options.max_input_bytes = 10;
+  absl::StatusOr<TriangleSoup> soup = LoadMesh(fifo.path, nullptr, options);
+  ExpectError(soup, fifo.path, "is longer than the input budget of 10 bytes");
+  EXPECT_EQ(soup.status().code(), absl::StatusCode::kResourceExhausted);
+}
+
 TEST(MeshInput, SniffsTheFormatsItKnows) {
   EXPECT_EQ(SniffMeshFormat("ply\nformat ascii 1.0\n"), "ply");
   EXPECT_EQ(SniffMeshFormat("OFF\n3 1 0\n"), "off");

@@ -24,10 +24,6 @@ namespace {
 // The only post-processing: polygons -> triangles, node transforms applied.
 constexpr unsigned int kAssimpFlags = aiProcess_Triangulate | aiProcess_PreTransformVertices;
 
-absl::Status FileError(absl::StatusCode code, const std::string& path, const std::string& why) {
-  return absl::Status(code, absl::StrCat(path, ": ", why));
-}
-
 inline bool SaneCoordinate(float x) { return std::fabs(x) <= kMaxAbsCoordinate; }  // NaN fails
 
 inline Vec3 ToVec3(const aiVector3D& p) {
@@ -141,19 +137,23 @@ absl::StatusOr<TriangleSoup> LoadMeshImpl(const std::string& path, const LoadOpt
   }
   absl::StatusOr<MeshInput> input = ReadMeshInput(path, options.max_input_bytes);
   if (!input.ok()) return input.status();
-  const MeshInput& in = *input;
+  MeshInput& in = *input;
 
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
   try {
     // OBJ, OFF and PLY are checked first (mesh_syntax.h): assimp accepts or
     // aborts on some malformed files of these formats.
-    if (in.format == "obj" || in.format == "off" || in.format == "ply") {
+    if (NeedsSyntaxCheck(in.format)) {
       if (absl::Status s = CheckMeshSyntax(in.bytes, in.format, path); !s.ok()) return s;
     }
-    scene = in.in_memory
-                ? importer.ReadFileFromMemory(in.bytes.data(), in.bytes.size(), 0, in.format.c_str())
-                : importer.ReadFile(path, 0);
+    if (in.in_memory) {
+      scene = importer.ReadFileFromMemory(in.bytes.data(), in.bytes.size(), 0, in.format.c_str());
+    } else {
+      std::string().swap(in.bytes);  // checked: assimp reads the file itself
+      scene = importer.ReadFile(path, 0);
+    }
+    std::string().swap(in.bytes);  // the importer holds the scene now
     // Post-processing trusts the importer's indices (assimp 5.2's Triangulate
     // segfaults on a truncated binary PLY), so check them first.
     if (scene != nullptr) {

@@ -34,10 +34,6 @@ constexpr uint64_t kFnvPrime = 0x100000001b3ULL;
 constexpr int kCacheKeyVersion = 1;
 constexpr char kMetaTag[] = "KDTRISMETA1";
 
-absl::Status FileError(absl::StatusCode code, const std::string& path, const std::string& why) {
-  return absl::Status(code, absl::StrCat(path, ": ", why));
-}
-
 // FNV-1a over 64-bit words; all but the last chunk must be a multiple of 8.
 uint64_t FnvWords(uint64_t h, const void* data, size_t size) {
   const unsigned char* p = static_cast<const unsigned char*>(data);

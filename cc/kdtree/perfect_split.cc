@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kdtree {
 namespace {
@@ -49,12 +50,16 @@ bool ClipTriangleToBox(const Vec3& a, const Vec3& b, const Vec3& c, const AABB& 
   const Vec3* v[3] = {&a, &b, &c};
   for (int i = 0; i < 3; ++i) poly[0][i] = P3{{v[i]->x, v[i]->y, v[i]->z}};
   int n = 3, cur = 0;
-  double size = 0;
+  // Grown by 1e-6 of the box's extent, plus the rounding of the cut points at
+  // the coordinates' magnitude: the tree does not depend on where the scene
+  // sits (issue 24).
+  double size = 0, magnitude = 0;
   for (int k = 0; k < 3; ++k) {
-    size = std::max({size, std::abs(double(box.lo[k])), std::abs(double(box.hi[k])),
-                     double(box.hi[k]) - double(box.lo[k])});
+    size = std::max(size, double(box.hi[k]) - double(box.lo[k]));
+    magnitude = std::max({magnitude, std::abs(double(box.lo[k])), std::abs(double(box.hi[k])),
+                          std::abs(double(a[k])), std::abs(double(b[k])), std::abs(double(c[k]))});
   }
-  const double pad = size * 1e-6;
+  const double pad = size * 1e-6 + 16 * std::numeric_limits<double>::epsilon() * magnitude;
   for (int k = 0; k < 3 && n > 0; ++k) {
     n = ClipPlane(poly[cur], n, k, double(box.lo[k]) - pad, -1.0, poly[1 - cur]);
     cur = 1 - cur;

@@ -11,10 +11,12 @@
 // plane and intersects with the old box, which can leave the box much larger
 // than the triangle's part.
 //
-// Conservative: the polygon is clipped in double against the box grown by a
-// relative 1e-6 (as the conservative pruning test, pruning.h), its box is
-// rounded outward to float and then intersected with the exact box, so a
-// triangle that touches the box is never lost.
+// Conservative: the polygon is clipped in double against the box grown by
+// 1e-6 of the box's extent plus the rounding of the cut
+// points at the coordinates' magnitude (independent of where the scene sits,
+// like the conservative pruning test, pruning.h), its box is rounded outward
+// to float and then intersected with the exact box, so a triangle that
+// touches the box is never lost.
 #ifndef KDTREE_CC_KDTREE_PERFECT_SPLIT_H_
 #define KDTREE_CC_KDTREE_PERFECT_SPLIT_H_
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace kdtree {
 namespace {
@@ -50,28 +51,39 @@ bool Overlap(const V3<T>& v0, const V3<T>& v1, const V3<T>& v2, const V3<T>& h) 
       if (mn > rad || mx < -rad) return false;
     }
   }
-  // 3) The triangle's plane against the box.
+  // 3) The triangle's plane against the box: the three vertices projected
+  // (the rounded normal is not exactly normal to the edges, so for a needle
+  // triangle one vertex's projection could miss a box the others reach).
   const V3<T> n = CrossT(e[0], e[1]);
-  const T d = DotT(n, v0);
+  const T d0 = DotT(n, v0), d1 = DotT(n, v1), d2 = DotT(n, v2);
   const T rad = h.x * std::abs(n.x) + h.y * std::abs(n.y) + h.z * std::abs(n.z);
-  return !(d > rad || d < -rad);
+  return !(std::min({d0, d1, d2}) > rad || std::max({d0, d1, d2}) < -rad);
 }
 
+template <typename T>
+T MaxAbs(const V3<T>& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// The test on coordinates relative to the box centre. With grow > 0 the box
+// is grown by `grow` times the largest value the test compares (the box's
+// half-size and the triangle's coordinates relative to the centre), plus the
+// rounding of the centre itself: a bound on the test's own rounding, so the
+// answer does not depend on where the scene sits (issue 24).
 template <typename T>
 bool Test(const Vec3& a, const Vec3& b, const Vec3& c, const AABB& box, T grow) {
   const V3<T> lo{T(box.lo.x), T(box.lo.y), T(box.lo.z)};
   const V3<T> hi{T(box.hi.x), T(box.hi.y), T(box.hi.z)};
   const V3<T> centre{(lo.x + hi.x) * T(0.5), (lo.y + hi.y) * T(0.5), (lo.z + hi.z) * T(0.5)};
   V3<T> h{(hi.x - lo.x) * T(0.5), (hi.y - lo.y) * T(0.5), (hi.z - lo.z) * T(0.5)};
-  if (grow > T(0)) {
-    const T size = std::max({h.x, h.y, h.z, std::abs(centre.x), std::abs(centre.y),
-                             std::abs(centre.z)});
-    const T pad = size * grow;
-    h = {h.x + pad, h.y + pad, h.z + pad};
-  }
   const V3<T> v0 = Sub(V3<T>{T(a.x), T(a.y), T(a.z)}, centre);
   const V3<T> v1 = Sub(V3<T>{T(b.x), T(b.y), T(b.z)}, centre);
   const V3<T> v2 = Sub(V3<T>{T(c.x), T(c.y), T(c.z)}, centre);
+  if (grow > T(0)) {
+    const T local = std::max({MaxAbs(h), MaxAbs(v0), MaxAbs(v1), MaxAbs(v2)});
+    const T pad = local * grow + 4 * std::numeric_limits<T>::epsilon() * MaxAbs(centre);
+    h = {h.x + pad, h.y + pad, h.z + pad};
+  }
   return Overlap(v0, v1, v2, h);
 }
 

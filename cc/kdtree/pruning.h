@@ -17,9 +17,12 @@ namespace kdtree {
 // Exact-as-float test (seed-compatible mode): float arithmetic, box as given.
 bool TriangleOverlapsBoxFloat(const Vec3& a, const Vec3& b, const Vec3& c, const AABB& box);
 
-// Conservative test (default): double arithmetic and the box grown by a
-// relative 1e-6 of its size, so rounding can never drop a triangle that
-// touches the box; at worst a triangle that misses by a hair is kept.
+// Conservative test (default): double arithmetic on coordinates relative to
+// the box centre, the box grown by 1e-6 of the largest value compared (its
+// half-size, the triangle's coordinates relative to the centre), so rounding
+// can never drop a triangle that touches the box; at worst a triangle that
+// misses by a hair is kept. The growth does not depend on where the scene
+// sits: a scene moved far from the origin is pruned as at the origin.
 bool TriangleOverlapsBoxConservative(const Vec3& a, const Vec3& b, const Vec3& c,
                                      const AABB& box);
 

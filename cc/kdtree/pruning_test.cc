@@ -35,23 +35,41 @@ TEST(Pruning, TouchingCountsAsOverlap) {
 }
 
 TEST(Pruning, ConservativeKeepsAHairlineMiss) {
-  // A box 1e-9 away from the vertex: exact float SAT says no overlap, the
-  // conservative test keeps it (growing the box by 1e-6 of its size).
+  // A box about 1e-6 away from the vertex: exact float SAT says no overlap,
+  // the conservative test keeps it (growing the box by 1e-6 of the values
+  // compared, here 1.5e-6).
   const AABB box({1.000001f, 0, -1}, {2, 1, 1});
   EXPECT_FALSE(TriangleOverlapsBoxFloat(A, B, C, box));
   EXPECT_TRUE(TriangleOverlapsBoxConservative(A, B, C, box));
+}
+
+TEST(Pruning, ConservativeGrowthDoesNotDependOnWhereTheBoxSits) {
+  // A triangle of size 8 and a box 1/8 beyond its vertex, at the origin and
+  // moved by 2^17 (exact in float): a clear miss in both places (the growth
+  // was 1e-6 of the coordinates' magnitude, 0.13 at 2^17: kept there).
+  for (const float offset : {0.0f, 131072.0f}) {
+    const Vec3 o(offset, offset, offset);
+    const AABB box(Vec3(8.125f, 0, -1) + o, Vec3(9, 1, 1) + o);
+    EXPECT_FALSE(TriangleOverlapsBoxConservative(A * 8.0f + o, B * 8.0f + o, C * 8.0f + o, box))
+        << offset;
+  }
 }
 
 // On small integer coordinates every product and sum of the test is exact in
 // float, so the float test is the exact answer, and the conservative test
 // (its vertex-in-box exit or its separating-axis path) must give the same on
 // every pair: separations are at least 1/2, far beyond its 1e-6 growth.
-TEST(Pruning, ConservativeEqualsExactOnIntegerCoordinates) {
+// The same 2^17 away from the origin (still exact in float): a touching
+// triangle is kept there too.
+class ConservativeOnIntegers : public ::testing::TestWithParam<float> {};
+
+TEST_P(ConservativeOnIntegers, EqualsExact) {
   std::mt19937 rng(7);
   std::uniform_int_distribution<int> coord(-8, 8);
+  const float offset = GetParam();
   const auto point = [&] {
-    return Vec3(static_cast<float>(coord(rng)), static_cast<float>(coord(rng)),
-                static_cast<float>(coord(rng)));
+    return Vec3(static_cast<float>(coord(rng)) + offset, static_cast<float>(coord(rng)) + offset,
+                static_cast<float>(coord(rng)) + offset);
   };
   int vertex_inside = 0, overlapping = 0;
   for (int i = 0; i < 20000; ++i) {
@@ -68,6 +86,8 @@ TEST(Pruning, ConservativeEqualsExactOnIntegerCoordinates) {
   EXPECT_GT(vertex_inside, 1000);
   EXPECT_GT(overlapping, vertex_inside + 1000);
 }
+
+INSTANTIATE_TEST_SUITE_P(Offsets, ConservativeOnIntegers, ::testing::Values(0.0f, 131072.0f));
 
 }  // namespace
 }  // namespace kdtree

@@ -109,6 +109,9 @@ int BlockPixels(int w, int y0, int y1, int x, int x1, size_t* pixels) {
 }
 
 void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* out) {
+  size_t total = 0;
+  for (const auto& row : *rows) total += row.size();
+  out->reserve(out->size() + total);
   for (auto& row : *rows) {
     out->insert(out->end(), row.begin(), row.end());
     std::vector<RayRecord>().swap(row);
@@ -122,7 +125,9 @@ uint64_t RenderBytes(const View& view, const RenderOptions& options) {
   const uint64_t lights = options.cast_shadow_rays ? view.lights.size() : 0;
   const uint64_t ao = view.ao.enabled() ? static_cast<uint64_t>(view.ao.samples) : 0;
   uint64_t per_pixel = sizeof(Hit) + 3 + lights + (ao > 0 ? sizeof(uint16_t) : 0);
-  if (options.record_rays) per_pixel += (1 + lights + ao) * sizeof(RayRecord);
+  // Recorded rays: the per-row buffers (grown by doubling: up to twice their
+  // rays) and the result they are appended to.
+  if (options.record_rays) per_pixel += 3 * (1 + lights + ao) * sizeof(RayRecord);
   return pixels * per_pixel;
 }
 

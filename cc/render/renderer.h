@@ -93,8 +93,9 @@ struct RenderResult {
 
 // The bytes Render allocates for `view` with `options`, at worst (every
 // primary ray hits): per pixel a Hit, 3 image bytes and a 16-bit AO count,
-// an occlusion flag per pixel and light, and with record_rays a RayRecord per
-// ray. What a caller checks against its memory budget before rendering.
+// an occlusion flag per pixel and light, and with record_rays three
+// RayRecords per ray (per-row buffers grown by doubling, then the result).
+// What a caller checks against its memory budget before rendering.
 uint64_t RenderBytes(const View& view, const RenderOptions& options);
 
 // `view` must be valid; `tracer` must have been built on `soup` (triangle

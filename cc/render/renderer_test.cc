@@ -46,9 +46,9 @@ TEST(RenderBytes, CountsWhatRenderAllocatesAtWorst) {
   const uint64_t pixels = 800 * 800;
   EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + 2));
   options.record_rays = true;  // a primary and two shadow rays per pixel
-  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + 2 + 3 * sizeof(RayRecord)));
+  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + 2 + 3 * 3 * sizeof(RayRecord)));
   options.cast_shadow_rays = false;
-  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + sizeof(RayRecord)));
+  EXPECT_EQ(RenderBytes(view, options), pixels * (sizeof(Hit) + 3 + 3 * sizeof(RayRecord)));
 }
 
 TEST(Renderer, NoLightTracesNoShadowRays) {

@@ -148,7 +148,8 @@ absl::Status CheckRunMemory(const View& view, const Config& config, size_t trian
   const uint64_t need = RenderBytes(view, recording) + 3 * RenderBytes(view, lane) +
                         uint64_t{triangles} * 3 * sizeof(Vec3);
   const double gb = absl::GetFlag(FLAGS_memory_budget_gb);
-  const uint64_t budget = gb > 0 ? static_cast<uint64_t>(gb * 1e9) : DefaultMemoryBudget();
+  const uint64_t budget = gb <= 0 ? DefaultMemoryBudget()
+                                  : gb >= 1e9 ? ~uint64_t{0} : static_cast<uint64_t>(gb * 1e9);
   return CheckMemoryBudget(need, budget,
                            absl::StrFormat("rendering %dx%d with %zu lights%s and recording every ray",
                                            view.width, view.height, view.lights.size(),
