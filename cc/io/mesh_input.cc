@@ -49,15 +49,13 @@ struct Inflater {
   }
 };
 
-// Inflates the gzip members of `gz` into `out`, stopping past max_bytes.
-// Bytes after the last member that do not start another one are ignored, as
-// zlib's gzread does.
-absl::Status Inflate(absl::string_view gz, const std::string& path, size_t max_bytes,
-                     std::string* out) {
-  if (!IsGzip(gz)) {
-    return FileError(absl::StatusCode::kInvalidArgument, path,
-                     "name ends in .gz but the file is not gzip-compressed");
-  }
+// One pass over the gzip members of `gz`: their inflated size in *total,
+// appended to `out` unless it is null; stops past max_bytes. Bytes after the
+// last member that do not start another one are ignored, as zlib's gzread
+// does.
+absl::Status InflatePass(absl::string_view gz, const std::string& path, size_t max_bytes,
+                         std::string* out, size_t* total) {
+  *total = 0;
   Inflater in;
   if (!in.ok) return FileError(absl::StatusCode::kResourceExhausted, path, "zlib cannot start inflating");
   z_stream& zs = in.zs;
@@ -74,11 +72,12 @@ absl::Status Inflate(absl::string_view gz, const std::string& path, size_t max_b
     zs.avail_out = static_cast<uInt>(chunk.size());
     const int rc = inflate(&zs, Z_NO_FLUSH);
     const size_t n = chunk.size() - zs.avail_out;
-    if (out->size() + n > max_bytes) {
+    if (*total + n > max_bytes) {
       return FileError(absl::StatusCode::kResourceExhausted, path,
                        absl::StrCat("inflates to more than ", BudgetNote(max_bytes)));
     }
-    out->append(chunk.data(), n);
+    *total += n;
+    if (out != nullptr) out->append(chunk.data(), n);
     if (rc == Z_STREAM_END) {
       const size_t left = zs.avail_in + (gz.size() - fed);
       if (!IsGzip(gz.substr(gz.size() - left))) break;  // the end, or trailing bytes
@@ -92,10 +91,27 @@ absl::Status Inflate(absl::string_view gz, const std::string& path, size_t max_b
                                     why != nullptr ? why : "unknown error", ")"));
     }
   }
-  if (out->empty()) {
+  return absl::OkStatus();
+}
+
+// Inflates `gz` into `out` within max_bytes: a first pass measures (and
+// refuses a file over the budget holding no more than one 1 MiB chunk), the
+// second fills a buffer of exactly that size, so memory never exceeds the
+// budget by the slack of a growing string.
+absl::Status Inflate(absl::string_view gz, const std::string& path, size_t max_bytes,
+                     std::string* out) {
+  if (!IsGzip(gz)) {
+    return FileError(absl::StatusCode::kInvalidArgument, path,
+                     "name ends in .gz but the file is not gzip-compressed");
+  }
+  size_t total = 0;
+  if (absl::Status st = InflatePass(gz, path, max_bytes, nullptr, &total); !st.ok()) return st;
+  if (total == 0) {
     return FileError(absl::StatusCode::kInvalidArgument, path, "file is empty after gzip decompression");
   }
-  return absl::OkStatus();
+  out->clear();
+  out->reserve(total);
+  return InflatePass(gz, path, max_bytes, out, &total);
 }
 
 }  // namespace
