@@ -43,15 +43,6 @@ void ForChunks(size_t n, bool parallel, const F& f) {
 }
 
 // Depth cap: maxDepth, or 8 + 1.3 log2 N with autoDepth (config.h).
-// The most nodes, and the most leaf references, a tree over n triangles may
-// hold: the larger of 2^25 (a few hundred MB, so a small mesh whose tree grows
-// exponentially, e.g. spatial median splits to maxDepth 60, fails fast) and
-// 4096 per triangle (the report's own trees hold up to 2,474 per triangle:
-// Suzanne, spatial median 24/2), at most the index range (2^30).
-size_t TreeSizeLimit(size_t n) {
-  return std::min<size_t>(KdNode::kMaxIndex, std::max<size_t>(size_t{1} << 25, 4096 * n));
-}
-
 int EffectiveMaxDepth(const Config& config, size_t n) {
   if (!config.auto_depth) return config.max_depth;
   const double d = 8.0 + 1.3 * std::log2(static_cast<double>(std::max<size_t>(n, 1)));
@@ -114,8 +105,6 @@ class Builder {
   }
 
   bool overflow() const { return overflow_; }
-  // The most nodes, and the most references, a tree (each fragment) may hold.
-  void set_max_size(size_t n) { max_size_ = n; }
 
   // The whole tree; `parallel`: the first references are made by the
   // arena's threads (each chunk's box, then their union: min and max are
@@ -156,10 +145,8 @@ class Builder {
     Recurse(0, n, root, 0);
     if (overflow_) {
       return absl::ResourceExhaustedError(absl::StrCat(
-          "kd-tree exceeds its size limit of ", max_size_,
-          " nodes or references (the larger of 2^25 and 4096 per triangle, at most 2^30; ",
-          "stopped at ", tree_->nodes.size(), " nodes, ", tree_->refs.size(),
-          " references): lower maxDepth or raise maxLeafSize"));
+          "kd-tree exceeds 2^30 nodes or references (stopped at ", tree_->nodes.size(), " nodes, ",
+          tree_->refs.size(), " references): lower maxDepth or raise maxLeafSize"));
     }
     return absl::OkStatus();
   }
@@ -181,9 +168,10 @@ class Builder {
     }
     const uint32_t node = static_cast<uint32_t>(tree_->nodes.size());
     tree_->nodes.push_back(KdNode::Leaf(0));
-    // Past the size limit (TreeSizeLimit) the build has failed: stop growing
-    // (the node stays an empty leaf) instead of filling memory.
-    if (overflow_ || tree_->nodes.size() > max_size_ || tree_->refs.size() > max_size_) {
+    // Past the index range (2^30 nodes or references) the build has failed:
+    // stop growing (the node stays an empty leaf) instead of recursing on.
+    if (overflow_ || tree_->nodes.size() > KdNode::kMaxIndex ||
+        tree_->refs.size() > KdNode::kMaxIndex) {
       overflow_ = true;
       return;
     }
@@ -237,7 +225,6 @@ class Builder {
       if (local_ == nullptr) {
         local_ = std::make_unique<Builder>(soup_, config_, fragment_, max_depth_, 0, nullptr);
         local_->pool_ = pool_;  // its references go on top of this builder's
-        local_->max_size_ = max_size_;
       }
       // `refs` may lie in the pool: read them before the pool grows.
       local_boxes_.resize(count + 1);  // + 1: binned_sah.cc's SSE loads
@@ -291,7 +278,6 @@ class Builder {
     auto right = std::make_unique<Fragment>();
     Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_, boxes_);
     Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_, boxes_);
-    lb.max_size_ = rb.max_size_ = max_size_;
     const Ref* refs = pool_->data();
     tbb::task_group group;
     group.run(
@@ -383,7 +369,6 @@ class Builder {
   BinScratch scratch_;
   SweepScratch sweep_;
   bool overflow_ = false;
-  size_t max_size_ = KdNode::kMaxIndex;
 };
 
 }  // namespace
@@ -424,15 +409,10 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
       }
       std::copy(soup.v.begin() + 3 * begin, soup.v.begin() + 3 * end, tree.verts.begin() + 3 * begin);
     });
-    const size_t limit = TreeSizeLimit(n);
     if (UsesIndexRefs(config)) {
-      Builder<IndexRef> builder(soup, config, &root, max_depth, parallel_depth);
-      builder.set_max_size(limit);
-      status = builder.Run(threads > 1);
+      status = Builder<IndexRef>(soup, config, &root, max_depth, parallel_depth).Run(threads > 1);
     } else {
-      Builder<BuildRef> builder(soup, config, &root, max_depth, parallel_depth);
-      builder.set_max_size(limit);
-      status = builder.Run(threads > 1);
+      status = Builder<BuildRef>(soup, config, &root, max_depth, parallel_depth).Run(threads > 1);
     }
     if (!status.ok()) return;
     tree.bounds = root.tree.bounds;

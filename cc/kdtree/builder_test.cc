@@ -321,24 +321,3 @@ TEST(Builder, TreeStatisticsDoNotDependOnWhereTheSceneSits) {
 
 }  // namespace
 }  // namespace kdtree
-
-namespace kdtree {
-namespace {
-
-// Issue 24: spatial median splits to depth 60 on a small mesh grow the tree
-// exponentially (triangles meeting at a vertex never separate); the build
-// stops at its size limit and says so, instead of filling memory.
-TEST(Builder, ATreeThatGrowsWithoutBoundFailsAtItsSizeLimit) {
-  const TriangleSoup soup = testing::BumpySphere(2, 1);
-  Config config = *Preset("median-24-2");
-  config.max_depth = 60;
-  config.max_leaf_size = 1;
-  const absl::StatusOr<KdTree> tree = BuildKdTree(soup, config);
-  ASSERT_FALSE(tree.ok());
-  EXPECT_EQ(tree.status().code(), absl::StatusCode::kResourceExhausted);
-  EXPECT_NE(tree.status().message().find("exceeds its size limit of 33554432"), std::string::npos)
-      << tree.status();
-}
-
-}  // namespace
-}  // namespace kdtree
