@@ -39,11 +39,31 @@ def outside_references(root, files):
     return hits
 
 
+# Generated or fetched, never tracked: skipped when walking a copy without git.
+UNTRACKED = ("out", "data/cache", "report/build", "report/generated", ".git")
+
+
+def tracked_files(root):
+    """`git ls-files` of root; for a copy that is not a git checkout, every
+    file but the generated ones (UNTRACKED, bazel-*)."""
+    try:
+        listed = subprocess.run(["git", "-C", root, "ls-files", "-z"], stdout=subprocess.PIPE,
+                                stderr=subprocess.DEVNULL, check=True).stdout.decode()
+        return [f for f in listed.split("\0") if f]
+    except (OSError, subprocess.CalledProcessError):
+        files = []
+        for d, dirs, names in os.walk(root):
+            rel = os.path.relpath(d, root)
+            dirs[:] = [x for x in dirs if not x.startswith("bazel-")
+                       and os.path.normpath(os.path.join(rel, x)) not in UNTRACKED]
+            files += [os.path.normpath(os.path.join(rel, n)) for n in names]
+        return files
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     root = argv[0] if argv else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    files = subprocess.run(["git", "-C", root, "ls-files", "-z"], stdout=subprocess.PIPE,
-                           check=True).stdout.decode().split("\0")
+    files = tracked_files(root)
     hits = outside_references(root, [f for f in files if f and f != "experiments/self_contained.py"
                                      and f != "experiments/self_contained_test.py"])
     for name, number, line in hits:

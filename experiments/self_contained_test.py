@@ -39,5 +39,18 @@ class SelfContainedTest(unittest.TestCase):
             self.assertEqual(self_contained.main([root]), 1)
 
 
+    def test_a_copy_without_git_is_walked(self):
+        with tempfile.TemporaryDirectory() as root:
+            os.makedirs(os.path.join(root, "out"))
+            os.makedirs(os.path.join(root, "cc"))
+            with open(os.path.join(root, "out", "log.txt"), "w") as f:
+                f.write("/work/main/out\n")  # generated: not scanned
+            with open(os.path.join(root, "cc", "a.h"), "w") as f:
+                f.write("// fine\n")
+            self.assertEqual(sorted(self_contained.tracked_files(root)),
+                             [os.path.join("cc", "a.h")])
+            self.assertEqual(self_contained.main([root]), 0)
+
+
 if __name__ == "__main__":
     unittest.main()
