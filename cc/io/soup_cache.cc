@@ -17,6 +17,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "cc/base/fnv.h"
 
 namespace kdtree {
 namespace {
@@ -28,34 +29,11 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the cache format is li
 constexpr char kMagic[8] = {'K', 'D', 'T', 'R', 'I', 'S', '0', '1'};
 constexpr size_t kHeaderBytes = 16;  // magic + count
 constexpr size_t kTriangleBytes = 9 * sizeof(float);
-constexpr uint64_t kFnvOffset = 0xcbf29ce484222325ULL;
-constexpr uint64_t kFnvPrime = 0x100000001b3ULL;
 // Bump when the loader's output for the same file may change.
 constexpr int kCacheKeyVersion = 1;
 constexpr char kMetaTag[] = "KDTRISMETA1";
 
-// FNV-1a over 64-bit words; all but the last chunk must be a multiple of 8.
-uint64_t FnvWords(uint64_t h, const void* data, size_t size) {
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  size_t i = 0;
-  for (; i + 8 <= size; i += 8) {
-    uint64_t w;
-    std::memcpy(&w, p + i, 8);
-    h = (h ^ w) * kFnvPrime;
-  }
-  if (i < size) {
-    uint64_t w = 0;
-    std::memcpy(&w, p + i, size - i);
-    h = (h ^ w) * kFnvPrime;
-  }
-  return h;
-}
-
-uint64_t FnvBytes(const std::string& s) {
-  uint64_t h = kFnvOffset;
-  for (unsigned char c : s) h = (h ^ c) * kFnvPrime;
-  return h;
-}
+uint64_t FnvString(const std::string& s) { return FnvBytes(s.data(), s.size()); }
 
 // Asks for transparent huge pages on a large fresh allocation: page faults,
 // not copying, dominate reading a big cache otherwise. Advisory only.
@@ -154,7 +132,7 @@ std::string SafeStem(const std::string& path) {
 
 }  // namespace
 
-uint64_t SoupChecksum(const void* data, size_t size) { return FnvWords(kFnvOffset, data, size); }
+uint64_t SoupChecksum(const void* data, size_t size) { return FnvWords(data, size); }
 
 absl::Status WriteSoupCache(const std::string& path, const TriangleSoup& soup) {
   if (soup.v.size() % 3 != 0) {
@@ -163,7 +141,7 @@ absl::Status WriteSoupCache(const std::string& path, const TriangleSoup& soup) {
   }
   const uint64_t count = soup.size();
   const size_t bytes = count * kTriangleBytes;
-  const uint64_t checksum = FnvWords(FnvWords(kFnvOffset, &count, 8), soup.v.data(), bytes);
+  const uint64_t checksum = FnvWords(soup.v.data(), bytes, FnvWords(&count, 8));
   return WriteAtomically(path, [&](std::FILE* f) {
     return std::fwrite(kMagic, 1, 8, f) == 8 && std::fwrite(&count, 1, 8, f) == 8 &&
            (bytes == 0 || std::fwrite(soup.v.data(), 1, bytes, f) == bytes) &&
@@ -219,7 +197,7 @@ absl::StatusOr<TriangleSoup> ReadSoupCache(const std::string& path) {
       std::fread(&stored, 1, 8, f) != 8) {
     return FileError(absl::StatusCode::kDataLoss, path, "short read: triangle cache truncated");
   }
-  const uint64_t computed = FnvWords(FnvWords(kFnvOffset, &count, 8), soup.v.data(), bytes);
+  const uint64_t computed = FnvWords(soup.v.data(), bytes, FnvWords(&count, 8));
   if (stored != computed) {
     return FileError(absl::StatusCode::kDataLoss, path,
                      absl::StrFormat("triangle cache corrupt: checksum mismatch (stored %016x, "
@@ -253,7 +231,7 @@ absl::StatusOr<std::string> SoupCachePath(const std::string& mesh_path,
       "v", kCacheKeyVersion, "|", abs.string(), "|", static_cast<int64_t>(st.st_size), "|",
       static_cast<int64_t>(st.st_mtim.tv_sec), ".", static_cast<int64_t>(st.st_mtim.tv_nsec), "|",
       options.drop_degenerate ? "drop-degenerate" : "keep-degenerate");
-  const std::string name = absl::StrFormat("%s-%016x.tris", SafeStem(mesh_path), FnvBytes(key));
+  const std::string name = absl::StrFormat("%s-%016x.tris", SafeStem(mesh_path), FnvString(key));
   return (std::filesystem::path(cache_dir) / name).string();
 }
 

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
+#include "cc/base/fnv.h"
 
 namespace kdtree {
 namespace {
@@ -24,17 +25,10 @@ struct Header {
 };
 static_assert(sizeof(Header) == kHeaderBytes, "32-byte header");
 
-// FNV-1a over 64-bit words (sizes here are always multiples of 8).
+// FNV-1a over 64-bit words (cc/base/fnv.h; sizes here are multiples of 8).
 struct Checksum {
-  uint64_t h = 0xcbf29ce484222325ull;
-  void Add(const void* data, size_t size) {
-    const unsigned char* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i + 8 <= size; i += 8) {
-      uint64_t w;
-      std::memcpy(&w, p + i, 8);
-      h = (h ^ w) * 0x100000001b3ull;
-    }
-  }
+  uint64_t h = kFnvOffset;
+  void Add(const void* data, size_t size) { h = FnvWords(data, size, h); }
 };
 
 std::string Errno() { return std::strerror(errno); }

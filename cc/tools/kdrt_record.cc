@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "cc/base/fnv.h"
 #include "cc/base/median.h"
 
 namespace kdtree {
@@ -55,10 +56,6 @@ Json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b, const Json& disagre
   return e;
 }
 
-uint64_t Fnv64(const std::vector<uint8_t>& bytes) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ull;
-  return h;
-}
+uint64_t Fnv64(const std::vector<uint8_t>& bytes) { return FnvBytes(bytes.data(), bytes.size()); }
 
 }  // namespace kdtree
