@@ -13,7 +13,8 @@
 
 namespace kdtree {
 
-// "obj", "off" or "ply" for the selector byte.
+// "obj", "off", "ply", "obj.gz" (the bytes written gzip-compressed) or
+// "ply.gz" (the bytes written as they are) for the selector byte.
 const char* FuzzFormat(uint8_t selector);
 
 // Returns the number of broken promises: a loaded soup with a triangle that

@@ -1,13 +1,13 @@
-// libFuzzer target: the mesh loader on fuzzed OBJ, OFF and PLY files
-// (mesh_fuzz.h). Aborts when a promise of LoadMesh is broken; crashes and
+// libFuzzer target: the mesh loader on fuzzed OBJ, OFF and PLY files, plain
+// and gzipped (mesh_fuzz.h). Aborts when a promise of LoadMesh is broken; crashes and
 // hangs are what libFuzzer reports itself.
 //
 // Needs clang's libFuzzer runtime; the Bazel toolchain is gcc, so it is built
 // by hand from the workspace root (assimp, zlib and Abseil from Debian):
 //
 //   clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -I. \
-//     cc/io/mesh_fuzzer.cc cc/io/mesh_fuzz.cc cc/io/mesh_loader.cc cc/io/mesh_syntax.cc \
-//     cc/io/ply_syntax.cc \
+//     cc/io/mesh_fuzzer.cc cc/io/mesh_fuzz.cc cc/io/mesh_loader.cc cc/io/mesh_input.cc \
+//     cc/base/read_file.cc cc/io/mesh_syntax.cc cc/io/ply_syntax.cc \
 //     -lassimp -lz $(pkg-config --libs absl_statusor absl_str_format absl_strings) \
 //     -o /tmp/mesh_fuzzer
 //   mkdir -p /tmp/mesh_corpus && /tmp/mesh_fuzzer -max_total_time=3600 -max_len=4096 \
