@@ -46,7 +46,6 @@
 #include "absl/strings/str_join.h"
 #include "cc/base/json_line.h"
 #include "cc/base/median.h"
-#include "cc/base/memory_budget.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/embree/embree_tracer.h"
@@ -62,6 +61,7 @@
 #include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
+#include "cc/tools/kdrt_limits.h"
 #include "cc/tools/kdrt_record.h"
 #include "cc/tools/paths.h"
 #include "cc/tools/progress.h"
@@ -134,27 +134,6 @@ Json ConfigJson(const Config& c) {
           {"bins", c.bins},                   {"use_clipping", c.use_clipping},
           {"use_pruning", c.use_pruning},     {"cast_shadow_rays", c.cast_shadow_rays},
           {"seed_compatible", c.seed_compatible}};
-}
-
-// What the renders hold at once, checked before anything is built (issue 24):
-// the recording render with every ray, the last image of each of up to three
-// timed lanes (the kd-tree, its fast mode, Embree), and the soup.
-absl::Status CheckRunMemory(const View& view, const Config& config, size_t triangles) {
-  RenderOptions recording;
-  recording.cast_shadow_rays = config.cast_shadow_rays;
-  recording.record_rays = true;
-  RenderOptions lane = recording;
-  lane.record_rays = false;
-  const uint64_t need = RenderBytes(view, recording) + 3 * RenderBytes(view, lane) +
-                        uint64_t{triangles} * 3 * sizeof(Vec3);
-  const double gb = absl::GetFlag(FLAGS_memory_budget_gb);
-  const uint64_t budget = gb <= 0 ? DefaultMemoryBudget()
-                                  : gb >= 1e9 ? ~uint64_t{0} : static_cast<uint64_t>(gb * 1e9);
-  return CheckMemoryBudget(need, budget,
-                           absl::StrFormat("rendering %dx%d with %zu lights%s and recording every ray",
-                                           view.width, view.height, view.lights.size(),
-                                           view.ao.enabled() ? " and ambient occlusion" : ""),
-                           "kdrt --memory_budget_gb");
 }
 
 absl::Status Run() {
@@ -234,7 +213,11 @@ absl::Status Run() {
     view_source = "auto";
   }
 
-  if (absl::Status st = CheckRunMemory(view, rc->config, soup->size()); !st.ok()) return st;
+  if (absl::Status st = CheckRunMemory(view, rc->config.cast_shadow_rays, soup->size(),
+                                       absl::GetFlag(FLAGS_memory_budget_gb));
+      !st.ok()) {
+    return st;
+  }
 
   progress.Phase("load");
   // Everything untimed first, then the timed rounds in one stretch under the
