@@ -8,16 +8,23 @@ import unittest
 import self_contained
 
 
+# Paths outside a repository, assembled so that this file names none.
+SHARED_NOTE = "/".join(["..", "shared", "notes", "seed-facts.md"])
+WORKSPACE_OUT = "/" + "/".join(["work", "main", "out"])
+HOME_CACHE = "/" + "/".join(["root", ".cache", "x"])
+SEED_TEXT = "/".join(["shared", "seed", "000.txt"])
+
+
 class SelfContainedTest(unittest.TestCase):
     def test_names_every_path_outside_the_repository(self):
         with tempfile.TemporaryDirectory() as root:
             files = {
                 "ok.md": "see data/README.md and ./shared/x, a/work/b, ~/work/c\n",
-                "notes.md": "as ../shared/notes/seed-facts.md says\n",
-                "rc": "line one\n# see /work/main/out\n",
-                "home.sh": "cp /root/.cache/x .\n",
-                "seed.py": "# shared/seed/000.txt\n",
-                "blob.bin": "\0../shared/notes",
+                "notes.md": "as %s says\n" % SHARED_NOTE,
+                "rc": "line one\n# see %s\n" % WORKSPACE_OUT,
+                "home.sh": "cp %s .\n" % HOME_CACHE,
+                "seed.py": "# %s\n" % SEED_TEXT,
+                "blob.bin": "\0" + SHARED_NOTE,
             }
             for name, text in files.items():
                 with open(os.path.join(root, name), "w") as f:
@@ -34,7 +41,7 @@ class SelfContainedTest(unittest.TestCase):
             subprocess.run(["git", "-C", root, "add", "a.md"], check=True)
             self.assertEqual(self_contained.main([root]), 0)
             with open(os.path.join(root, "b.md"), "w") as f:
-                f.write("read ../shared/notes/x.md\n")
+                f.write("read %s\n" % SHARED_NOTE)
             subprocess.run(["git", "-C", root, "add", "b.md"], check=True)
             self.assertEqual(self_contained.main([root]), 1)
 
@@ -44,7 +51,7 @@ class SelfContainedTest(unittest.TestCase):
             os.makedirs(os.path.join(root, "out"))
             os.makedirs(os.path.join(root, "cc"))
             with open(os.path.join(root, "out", "log.txt"), "w") as f:
-                f.write("/work/main/out\n")  # generated: not scanned
+                f.write(WORKSPACE_OUT + "\n")  # generated: not scanned
             with open(os.path.join(root, "cc", "a.h"), "w") as f:
                 f.write("// fine\n")
             self.assertEqual(sorted(self_contained.tracked_files(root)),
