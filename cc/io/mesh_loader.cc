@@ -147,13 +147,15 @@ absl::StatusOr<TriangleSoup> LoadMeshImpl(const std::string& path, const LoadOpt
     if (NeedsSyntaxCheck(in.format)) {
       if (absl::Status s = CheckMeshSyntax(in.bytes, in.format, path); !s.ok()) return s;
     }
+    // The bytes are freed as soon as they are not needed: after the syntax
+    // check when assimp reads the file itself, after the import otherwise.
     if (in.in_memory) {
       scene = importer.ReadFileFromMemory(in.bytes.data(), in.bytes.size(), 0, in.format.c_str());
+      std::string().swap(in.bytes);
     } else {
-      std::string().swap(in.bytes);  // checked: assimp reads the file itself
+      std::string().swap(in.bytes);
       scene = importer.ReadFile(path, 0);
     }
-    std::string().swap(in.bytes);  // the importer holds the scene now
     // Post-processing trusts the importer's indices (assimp 5.2's Triangulate
     // segfaults on a truncated binary PLY), so check them first.
     if (scene != nullptr) {
