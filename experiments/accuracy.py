@@ -12,12 +12,11 @@ failure is appended as {"ok": false, ...}). Resumable: a (scene, step,
 repeats) already recorded with "ok": true is skipped. --jobs kdrt processes
 run at once (default: the profile's "jobs", else 1), like the matrix's: their
 untimed work overlaps, their timed steps never do (cc/base/timing_lock.h);
-records are appended as runs end. Reuses
+records are appended as runs end (run_matrix.run_concurrently). Reuses
 experiments/run_matrix.py's record and host helpers. Standard library only.
 """
 
 import argparse
-import concurrent.futures
 import json
 import os
 import re
@@ -149,23 +148,16 @@ def main(argv=None):
         rec["concurrent_jobs"] = jobs_at_once
         return rec
 
-    # Each record is appended as its run ends; on an interrupt the runs not
-    # started are dropped (those running finish: kdrt is not killed mid-way).
-    pool = concurrent.futures.ThreadPoolExecutor(jobs_at_once)
-    try:
-        futures = [pool.submit(one, job) for job in pending]
-        for i, fut in enumerate(concurrent.futures.as_completed(futures)):
-            rec = fut.result()
-            run_matrix.append_record(results_path, rec)
-            failed += not rec["ok"]
-            print("accuracy: [%d/%d] %s / %s: %s" % (
-                i + 1, len(pending), rec["scene"], rec["step"],
-                "T_B %.3f s, T_R %.3f s, SAH %.2f" % (
-                    rec["T_B"], rec["T_R"], rec.get("sah_cost", float("nan")))
-                if rec["ok"] else "FAILED (%s)" % rec["error"][-300:]),
-                file=sys.stderr)
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+    runs = run_matrix.run_concurrently(pending, one, jobs_at_once)
+    for i, rec in enumerate(runs):
+        run_matrix.append_record(results_path, rec)
+        failed += not rec["ok"]
+        print("accuracy: [%d/%d] %s / %s: %s" % (
+            i + 1, len(pending), rec["scene"], rec["step"],
+            "T_B %.3f s, T_R %.3f s, SAH %.2f" % (
+                rec["T_B"], rec["T_R"], rec.get("sah_cost", float("nan")))
+            if rec["ok"] else "FAILED (%s)" % rec["error"][-300:]),
+            file=sys.stderr)
     return 1 if failed else 0
 
 

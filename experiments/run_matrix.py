@@ -275,6 +275,21 @@ def run_slurm(pending, settings, args, results_path):
     return failures
 
 
+def run_concurrently(items, run, jobs_at_once):
+    """Yields run(item) for every item, `jobs_at_once` at a time, each as it
+    ends (so its record is appended at once). When the caller stops early or
+    is interrupted, the runs not yet started are dropped; those running finish
+    (a kdrt process is never killed mid-way). The matrix and the accuracy
+    study (experiments/accuracy.py) both run their kdrt jobs through it."""
+    pool = concurrent.futures.ThreadPoolExecutor(max(1, jobs_at_once))
+    try:
+        futures = [pool.submit(run, item) for item in items]
+        for fut in concurrent.futures.as_completed(futures):
+            yield fut.result()
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
 def run_local(pending, settings, args, results_path, jobs_at_once):
     """Runs the pending jobs here, `jobs_at_once` kdrt processes at a time
     (each single-threaded unless the profile says otherwise); appends each
@@ -291,18 +306,17 @@ def run_local(pending, settings, args, results_path, jobs_at_once):
         rec["concurrent_jobs"] = jobs_at_once
         return rec
 
-    with concurrent.futures.ThreadPoolExecutor(jobs_at_once) as pool:
-        for rec in pool.map(one, pending):
-            append_record(results_path, rec)
-            if not rec["ok"]:
-                failures += 1
-                print("run_matrix: %s/%s failed (exit %s): %s"
-                      % (rec["scene"], rec["preset"], rec["returncode"],
-                         rec["error"].strip().splitlines()[-1:] or ""),
-                      file=sys.stderr)
-            if bar:
-                bar.set_description("%s/%s" % (rec["scene"], rec["preset"]))
-                bar.update(1)
+    for rec in run_concurrently(pending, one, jobs_at_once):
+        append_record(results_path, rec)
+        if not rec["ok"]:
+            failures += 1
+            print("run_matrix: %s/%s failed (exit %s): %s"
+                  % (rec["scene"], rec["preset"], rec["returncode"],
+                     rec["error"].strip().splitlines()[-1:] or ""),
+                  file=sys.stderr)
+        if bar:
+            bar.set_description("%s/%s" % (rec["scene"], rec["preset"]))
+            bar.update(1)
     if bar:
         bar.close()
     return failures
