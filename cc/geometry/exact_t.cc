@@ -1,38 +1,10 @@
 #include "cc/geometry/exact_t.h"
 
-#include <cmath>
-#include <limits>
-
+#include "cc/geometry/exact_triple.h"
 #include "cc/geometry/expansion.h"
 
 namespace kdtree {
 namespace {
-
-// Shewchuk 1997, section 4.3 (orient3d, stage A): a 3x3 determinant of
-// differences of doubles, evaluated in double, has the sign of the exact one
-// when its magnitude exceeds kErrBound times the permanent (the same
-// expression with every product and sum taken in absolute value).
-constexpr double kEps = std::numeric_limits<double>::epsilon() / 2;  // 2^-53
-constexpr double kErrBound = (7.0 + 56.0 * kEps) * kEps;
-
-struct D3 {
-  double x, y, z;
-};
-D3 Sub(const Vec3& p, const Vec3& q) {
-  return {double(p.x) - q.x, double(p.y) - q.y, double(p.z) - q.z};
-}
-
-// Sign of u . (v x w) when the double evaluation decides it, else 2.
-int FilteredTriple(const D3& u, const D3& v, const D3& w) {
-  const double vw_x = v.y * w.z - v.z * w.y, vw_y = v.z * w.x - v.x * w.z,
-               vw_z = v.x * w.y - v.y * w.x;
-  const double det = u.x * vw_x + u.y * vw_y + u.z * vw_z;
-  const double perm = std::fabs(u.x) * (std::fabs(v.y * w.z) + std::fabs(v.z * w.y)) +
-                      std::fabs(u.y) * (std::fabs(v.z * w.x) + std::fabs(v.x * w.z)) +
-                      std::fabs(u.z) * (std::fabs(v.x * w.y) + std::fabs(v.y * w.x));
-  if (std::fabs(det) > kErrBound * perm) return det > 0 ? 1 : -1;
-  return 2;
-}
 
 // True when A . (B x C) is exactly zero because a column or a row of the
 // matrix is: the origin lies in an axis-aligned plane that holds the whole

@@ -57,27 +57,31 @@ inline void AddTo(const Terms& p, double sign, Terms* sum) {
   for (double x : p) sum->push_back(sign * x);
 }
 
-// Sign (-1, 0, 1) of the exact sum of `terms` (Grow-Expansion, Theorem 10).
-inline int Sign(const Terms& terms) {
-  std::vector<double> e;
-  e.reserve(terms.size() + 1);
-  for (double b : terms) {
-    if (b == 0) continue;
-    double q = b;
-    std::vector<double> h;
-    h.reserve(e.size() + 1);
-    for (double ei : e) {
-      double s, r;
-      TwoSum(q, ei, &s, &r);
-      if (r != 0) h.push_back(r);
-      q = s;
+// Sign (-1, 0, 1) of the exact sum of the n doubles at `terms`, which it
+// overwrites: Grow-Expansion (Theorem 10) with zero elimination, in place
+// (the expansion so far occupies the front of the array, and each grown term
+// is written at an index no greater than the one it was read from).
+inline int SignInPlace(double* terms, int n) {
+  int len = 0;  // terms[0, len) is the nonoverlapping expansion so far
+  for (int i = 0; i < n; ++i) {
+    double q = terms[i];
+    if (q == 0) continue;
+    int h = 0;
+    for (int j = 0; j < len; ++j) {
+      double sum, r;
+      TwoSum(q, terms[j], &sum, &r);
+      if (r != 0) terms[h++] = r;
+      q = sum;
     }
-    if (q != 0) h.push_back(q);
-    e.swap(h);
+    if (q != 0) terms[h++] = q;
+    len = h;
   }
-  if (e.empty()) return 0;
-  return e.back() > 0 ? 1 : -1;
+  if (len == 0) return 0;
+  return terms[len - 1] > 0 ? 1 : -1;
 }
+
+// Sign (-1, 0, 1) of the exact sum of `terms`.
+inline int Sign(Terms terms) { return SignInPlace(terms.data(), static_cast<int>(terms.size())); }
 
 // d . (p x q) with d, p, q given as exact per-axis term lists.
 inline Terms Triple(const Terms d[3], const Terms p[3], const Terms q[3]) {

@@ -12,11 +12,20 @@
 // decide the hit: inside when none is negative or none is positive (no
 // back-face culling). A vertex shared by two triangles is transformed to the
 // same floats in both, and an edge function of a shared edge is evaluated on
-// the same two points (exactly negated), so a ray through a shared edge or
-// vertex always hits at least one of the triangles. Rounding can only turn the
-// sign of a x b - c d into zero, never flip it, so an edge function that comes
-// out 0 (or overflows) is recomputed in double, where the products of floats
-// are exact: that is the paper's "double precision fallback".
+// the same two points (exactly negated). But those floats are rounded: the
+// sign of a float edge function can differ from the sign of the exact one,
+// d . (C x B) / |d[kz]| for U with A = a - o (and cyclically for V, W), for a
+// ray that passes within rounding of an edge. So each float edge function is
+// trusted only beyond a bound on its error (EdgeErrorBound below); one within
+// it has its sign decided exactly (exact_triple.h: a double filter, then
+// Shewchuk's expansions), in the manner of Shewchuk's adaptive predicates.
+// Every sign the test acts on is then the exact sign for the ray as given,
+// so the test is watertight (a shared edge's two signs are exact negations)
+// and agrees with exact arithmetic on every ray: the hit is reported exactly
+// when the ray's line meets the closed triangle within the t range
+// (cc/render/exact_check.h).
+// (Woop et al.'s own fallback, the edge function recomputed in double from the
+// rounded sheared floats, is watertight but not exact.)
 //
 // Hit distance t = (U Az + V Bz + W Cz) / (U + V + W), evaluated in double once
 // the signs agree; barycentrics u = V / det (weight of b) and v = W / det
@@ -158,6 +167,105 @@ inline bool Finish(const WatertightRay& r, double e0, double e1, double e2, cons
 
 }  // namespace watertight_internal
 
+namespace watertight_internal {
+
+// The triangle in the ray's sheared frame, in floats: vertices relative to the
+// origin, permuted and sheared (x, y), their depth before the 1 / d[kz] scale
+// (dz = v[kz] - o[kz]), and the edge functions e = (U, V, W).
+struct Sheared {
+  float x[3], y[3], dz[3], e[3];
+};
+
+inline Sheared Shear(const WatertightRay& r, const Vec3& a, const Vec3& b, const Vec3& c) {
+  Sheared s;
+  s.dz[0] = Component(a, r.kz) - r.oz;
+  s.dz[1] = Component(b, r.kz) - r.oz;
+  s.dz[2] = Component(c, r.kz) - r.oz;
+  s.x[0] = (Component(a, r.kx) - r.ox) - r.sx * s.dz[0];
+  s.x[1] = (Component(b, r.kx) - r.ox) - r.sx * s.dz[1];
+  s.x[2] = (Component(c, r.kx) - r.ox) - r.sx * s.dz[2];
+  s.y[0] = (Component(a, r.ky) - r.oy) - r.sy * s.dz[0];
+  s.y[1] = (Component(b, r.ky) - r.oy) - r.sy * s.dz[1];
+  s.y[2] = (Component(c, r.ky) - r.oy) - r.sy * s.dz[2];
+  s.e[0] = s.x[2] * s.y[1] - s.y[2] * s.x[1];  // U: edge b-c, weight of a
+  s.e[1] = s.x[0] * s.y[2] - s.y[0] * s.x[2];  // V: edge c-a, weight of b
+  s.e[2] = s.x[1] * s.y[0] - s.y[1] * s.x[0];  // W: edge a-b, weight of c
+  return s;
+}
+
+// The constants of EdgeErrorBound (float, u = 2^-24).
+inline constexpr float kEdgeBoundRel = 0x1p-19f;        // 32 u
+inline constexpr float kEdgeBoundMinShear = 0x1p-31f;   // covers an underflowing shear
+inline constexpr float kEdgeBoundMinDepth = 0x1p-90f;   // covers underflow in x, y
+inline constexpr float kEdgeBoundAbs = 0x1p-146f;       // covers underflow in e
+
+// The weight of the depth in the error of the sheared coordinates, per ray:
+// max(|sx|, 2^-31) + max(|sy|, 2^-31).
+inline float ShearWeight(const WatertightRay& r) {
+  return FMax(std::fabs(r.sx), kEdgeBoundMinShear) + FMax(std::fabs(r.sy), kEdgeBoundMinShear);
+}
+
+// A bound on |e - E| for every edge function of Shear, E the exact edge
+// function of the ray as given and the triangle's float vertices, from
+// l = max(|x|, |y|) and mz = max |dz| over the three vertices and the ray's
+// shear weight w = wx + wy (wx = max(|sx|, 2^-31), wy likewise). Each float
+// operation rounds by at most u |result| + eta (u = 2^-24, eta = 2^-150 for
+// underflow), the shear sx = d[kx] / d[kz] too (|sx| <= 1). So, with
+// mx = max |x| and my = max |y|,
+//   |x - X| <= gamma(4) (|x| + 2 wx |dz|) + 2 eta = Ex (the same for y, Ey),
+//   |e - E| <= 4 u mx my + 2 (Ex my + mx Ey + Ex Ey) + 2 eta
+//           <= u (20 mx my + 16 mz (wx my + wy mx)) + 4 eta (1 + mx + my)
+// up to second-order terms, and mx my + mz (wx my + wy mx) <= l (l + mz w).
+// The depth enters through the shear only, so a ray nearly parallel to a
+// triangle's plane keeps a tight bound. 32 u l (l + (mz + 2^-90) w) + 2^-146
+// covers all of it with room for its own float evaluation (each term's
+// rounding, relative or by underflow, stays within the slack). An overflow
+// makes the bound +inf or NaN, and then no edge function is trusted.
+// RejectMask4 (cc/kdtree/packet_reject.h) does the same operations in the
+// same order.
+inline float EdgeErrorBound(float l, float mz, float w) {
+  return kEdgeBoundRel * (l * (l + (mz + kEdgeBoundMinDepth) * w)) + kEdgeBoundAbs;
+}
+
+inline float MaxAbs3(const float v[3]) {
+  return FMax(FMax(std::fabs(v[0]), std::fabs(v[1])), std::fabs(v[2]));
+}
+
+inline float EdgeErrorBound(const WatertightRay& r, const Sheared& s) {
+  return EdgeErrorBound(FMax(MaxAbs3(s.x), MaxAbs3(s.y)), MaxAbs3(s.dz), ShearWeight(r));
+}
+
+// True when the edge functions have certainly different exact signs: one
+// beyond +bound, one beyond -bound. (False for NaN.)
+inline bool SignsDisagree(const float e[3], float bound) {
+  return (e[0] < -bound || e[1] < -bound || e[2] < -bound) &&
+         (e[0] > bound || e[1] > bound || e[2] > bound);
+}
+
+// True when every edge function's float sign is its exact sign.
+inline bool SignsDecided(const float e[3], float bound) {
+  return std::fabs(e[0]) > bound && std::fabs(e[1]) > bound && std::fabs(e[2]) > bound;
+}
+
+// The rest of the test when an edge function is within its error bound: its
+// sign is decided exactly, then the signs are tested and Finish runs on the
+// double edge functions, each set to 0 where its sign is not the exact one
+// (watertight.cc).
+bool FinishUndecided(const WatertightRay& r, const Sheared& s, float bound, const float z[3],
+                     float max_abs_kz, const Vec3& a, const Vec3& b, const Vec3& c, float tmin,
+                     float tmax, float* t, float* u, float* v);
+
+}  // namespace watertight_internal
+
+// True when the watertight test certainly rejects triangle (a, b, c) on its
+// edge functions' signs alone (the step RejectMask4 takes for four triangles
+// at once, cc/kdtree/packet_reject.h).
+inline bool WatertightRejects(const WatertightRay& r, const Vec3& a, const Vec3& b,
+                              const Vec3& c) {
+  const watertight_internal::Sheared s = watertight_internal::Shear(r, a, b, c);
+  return watertight_internal::SignsDisagree(s.e, watertight_internal::EdgeErrorBound(r, s));
+}
+
 // Returns true and sets *t, *u, *v when the ray hits triangle (a, b, c) with
 // tmin < t <= tmax (and t above its rounding-error bound). Edges and vertices
 // are inclusive; a ray in the triangle's plane misses, and so does every ray
@@ -165,25 +273,12 @@ inline bool Finish(const WatertightRay& r, double e0, double e1, double e2, cons
 inline bool IntersectTriangleWatertight(const WatertightRay& r, const Vec3& a, const Vec3& b,
                                         const Vec3& c, float tmin, float tmax, float* t,
                                         float* u, float* v) {
-  using watertight_internal::Component;
-  // Vertices relative to the origin, permuted: (x, y, z) = (kx, ky, kz).
-  const float az = Component(a, r.kz) - r.oz, bz = Component(b, r.kz) - r.oz,
-              cz = Component(c, r.kz) - r.oz;
-  const float x[3] = {(Component(a, r.kx) - r.ox) - r.sx * az,
-                      (Component(b, r.kx) - r.ox) - r.sx * bz,
-                      (Component(c, r.kx) - r.ox) - r.sx * cz};
-  const float y[3] = {(Component(a, r.ky) - r.oy) - r.sy * az,
-                      (Component(b, r.ky) - r.oy) - r.sy * bz,
-                      (Component(c, r.ky) - r.oy) - r.sy * cz};
-  const float e0 = x[2] * y[1] - y[2] * x[1];  // U: edge b-c, weight of a
-  const float e1 = x[0] * y[2] - y[0] * x[2];  // V: edge c-a, weight of b
-  const float e2 = x[1] * y[0] - y[1] * x[0];  // W: edge a-b, weight of c
-  // A definite sign disagreement is a miss (the common case). Nonzero float
-  // signs are exact, also when a product overflowed to +-inf.
-  if ((e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f)) {
-    return false;
-  }
-  const float z[3] = {r.sz * az, r.sz * bz, r.sz * cz};
+  using namespace watertight_internal;  // NOLINT: the pieces of this test
+  const Sheared s = Shear(r, a, b, c);
+  const float bound = EdgeErrorBound(r, s);
+  // A certain sign disagreement is a miss (the common case).
+  if (SignsDisagree(s.e, bound)) return false;
+  const float z[3] = {r.sz * s.dz[0], r.sz * s.dz[1], r.sz * s.dz[2]};
   // Every vertex behind the origin: z = sz (v[kz] - o[kz]) is its depth t
   // along the ray with a relative rounding error only, so its sign is exact,
   // and every point of the triangle lies at a convex combination of the
@@ -191,19 +286,11 @@ inline bool IntersectTriangleWatertight(const WatertightRay& r, const Vec3& a, c
   // secondary ray crosses such triangles behind its origin (0.8 per shadow
   // ray on city2); this spares them the double-precision Finish.
   if (tmin >= 0.0f && z[0] < 0.0f && z[1] < 0.0f && z[2] < 0.0f) return false;
-  const float max_abs_kz = FMax(std::fabs(az), FMax(std::fabs(bz), std::fabs(cz)));
-  constexpr float kMax = std::numeric_limits<float>::max();
-  if (e0 != 0.0f && e1 != 0.0f && e2 != 0.0f && std::fabs(e0) <= kMax && std::fabs(e1) <= kMax &&
-      std::fabs(e2) <= kMax) {
-    return watertight_internal::Finish(r, e0, e1, e2, x, y, z, max_abs_kz, a, b, c, tmin, tmax, t, u,
-                                      v);
+  const float max_abs_kz = MaxAbs3(s.dz);
+  if (!SignsDecided(s.e, bound)) {
+    return FinishUndecided(r, s, bound, z, max_abs_kz, a, b, c, tmin, tmax, t, u, v);
   }
-  // Double fallback: a zero, infinite or NaN edge function is recomputed in
-  // double, where products of two floats are exact and so are the signs.
-  const double d0 = double(x[2]) * y[1] - double(y[2]) * x[1];
-  const double d1 = double(x[0]) * y[2] - double(y[0]) * x[2];
-  const double d2 = double(x[1]) * y[0] - double(y[1]) * x[0];
-  return watertight_internal::Finish(r, d0, d1, d2, x, y, z, max_abs_kz, a, b, c, tmin, tmax, t, u, v);
+  return Finish(r, s.e[0], s.e[1], s.e[2], s.x, s.y, z, max_abs_kz, a, b, c, tmin, tmax, t, u, v);
 }
 
 }  // namespace kdtree

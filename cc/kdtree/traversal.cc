@@ -51,27 +51,6 @@ struct StackEntry {
   float t_entry, t_exit;
 };
 
-// True when the watertight test certainly rejects the triangle: its three
-// edge functions have definitely different signs. The very float expressions
-// of IntersectTriangleWatertight (watertight.h), so false here means that test
-// decides exactly as before.
-inline bool WatertightRejects(const WatertightRay& r, const Vec3& a, const Vec3& b,
-                              const Vec3& c) {
-  using watertight_internal::Component;
-  const float az = Component(a, r.kz) - r.oz, bz = Component(b, r.kz) - r.oz,
-              cz = Component(c, r.kz) - r.oz;
-  const float x0 = (Component(a, r.kx) - r.ox) - r.sx * az;
-  const float x1 = (Component(b, r.kx) - r.ox) - r.sx * bz;
-  const float x2 = (Component(c, r.kx) - r.ox) - r.sx * cz;
-  const float y0 = (Component(a, r.ky) - r.oy) - r.sy * az;
-  const float y1 = (Component(b, r.ky) - r.oy) - r.sy * bz;
-  const float y2 = (Component(c, r.ky) - r.oy) - r.sy * cz;
-  const float e0 = x2 * y1 - y2 * x1;
-  const float e1 = x0 * y2 - y0 * x2;
-  const float e2 = x1 * y0 - y1 * x0;
-  return (e0 < 0.0f || e1 < 0.0f || e2 < 0.0f) && (e0 > 0.0f || e1 > 0.0f || e2 > 0.0f);
-}
-
 template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox>
 Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
              TraversalCounters* counters) {

@@ -53,14 +53,6 @@ double FloatUlp(double m) {
   return std::ldexp(1.0, e - 24);
 }
 
-int ExactTripleSign(const Vec3& d, const Vec3& p1, const Vec3& p0, const Vec3& q1,
-                    const Vec3& q0) {
-  const Terms dt[3] = {{d.x}, {d.y}, {d.z}};
-  const Terms p[3] = {Diff(p1.x, p0.x), Diff(p1.y, p0.y), Diff(p1.z, p0.z)};
-  const Terms q[3] = {Diff(q1.x, q0.x), Diff(q1.y, q0.y), Diff(q1.z, q0.z)};
-  return Sign(Triple(dt, p, q));
-}
-
 ExactTriangleHit ExactIntersect(const Ray& ray, const Vec3& a, const Vec3& b, const Vec3& c) {
   ExactTriangleHit out;
   const Vec3& o = ray.origin;

@@ -44,10 +44,6 @@ struct ExactTriangleHit {
 // Exact classification of `ray` against triangle (a, b, c).
 ExactTriangleHit ExactIntersect(const Ray& ray, const Vec3& a, const Vec3& b, const Vec3& c);
 
-// Sign (-1, 0, 1) of d . (p x q) with p = p1 - p0 and q = q1 - q0, exactly.
-int ExactTripleSign(const Vec3& d, const Vec3& p1, const Vec3& p0, const Vec3& q1,
-                    const Vec3& q0);
-
 // Units in the last place of a float of magnitude m: 2^(floor(log2 m) - 23).
 double FloatUlp(double m);
 
