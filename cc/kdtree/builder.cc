@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "cc/kdtree/binned_sah.h"
+#include "cc/kdtree/build_budget.h"
 #include "cc/kdtree/build_ref.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/collapse.h"
@@ -85,13 +87,14 @@ class Builder {
   // (parallel_build.h); 0 = serial. `boxes`: the triangles' tight boxes, for
   // IndexRef builders under the root builder (which makes them).
   Builder(const TriangleSoup& soup, const Config& config, Fragment* fragment, int max_depth,
-          int parallel_depth, const AABB* boxes = nullptr)
+          int parallel_depth, BuildBudget* budget, const AABB* boxes = nullptr)
       : soup_(soup),
         config_(config),
         fragment_(fragment),
         tree_(&fragment->tree),
         max_depth_(max_depth),
         parallel_depth_(parallel_depth),
+        budget_(budget),
         boxes_(boxes) {}
 
   // Builds a subtree (a fragment, parallel_build.h) over `refs` into tree_.
@@ -143,6 +146,12 @@ class Builder {
     pool_->Resize(n);
     tree_->bounds = root;
     Recurse(0, n, root, 0);
+    if (budget_->over()) {
+      return absl::ResourceExhaustedError(absl::StrFormat(
+          "kd-tree would need more than the %.2f GB it may use (stopped at %.2f GB): "
+          "lower maxDepth or raise maxLeafSize",
+          budget_->max_bytes() / 1e9, budget_->bytes() / 1e9));
+    }
     if (overflow_) {
       return absl::ResourceExhaustedError(absl::StrCat(
           "kd-tree exceeds 2^30 nodes or references (stopped at ", tree_->nodes.size(), " nodes, ",
@@ -170,7 +179,7 @@ class Builder {
     tree_->nodes.push_back(KdNode::Leaf(0));
     // Past the index range (2^30 nodes or references) the build has failed:
     // stop growing (the node stays an empty leaf) instead of recursing on.
-    if (overflow_ || tree_->nodes.size() > KdNode::kMaxIndex ||
+    if (overflow_ || !budget_->AddNode() || tree_->nodes.size() > KdNode::kMaxIndex ||
         tree_->refs.size() > KdNode::kMaxIndex) {
       overflow_ = true;
       return;
@@ -223,7 +232,7 @@ class Builder {
   void RecurseLocal(const Ref* refs, size_t count, const AABB& box, int depth) {
     if constexpr (kIndex) {
       if (local_ == nullptr) {
-        local_ = std::make_unique<Builder>(soup_, config_, fragment_, max_depth_, 0, nullptr);
+        local_ = std::make_unique<Builder>(soup_, config_, fragment_, max_depth_, 0, budget_);
         local_->pool_ = pool_;  // its references go on top of this builder's
       }
       // `refs` may lie in the pool: read them before the pool grows.
@@ -276,8 +285,8 @@ class Builder {
     tree_->nodes.push_back(KdNode::Leaf(0));  // right placeholder
     auto left = std::make_unique<Fragment>();
     auto right = std::make_unique<Fragment>();
-    Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_, boxes_);
-    Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_, boxes_);
+    Builder lb(soup_, config_, left.get(), max_depth_, parallel_depth_, budget_, boxes_);
+    Builder rb(soup_, config_, right.get(), max_depth_, parallel_depth_, budget_, boxes_);
     const Ref* refs = pool_->data();
     tbb::task_group group;
     group.run(
@@ -343,6 +352,7 @@ class Builder {
       return;
     }
     refs[offset] = count;
+    if (!budget_->AddLeaf(count)) overflow_ = true;
     if (offset > KdNode::kMaxIndex) overflow_ = true;
     tree_->nodes[node] = KdNode::Leaf(static_cast<uint32_t>(offset & KdNode::kMaxIndex));
   }
@@ -358,6 +368,7 @@ class Builder {
   size_t left_count_ = 0;
   const int max_depth_;
   const int parallel_depth_;
+  BuildBudget* budget_;             // the whole tree's, shared
   const AABB* boxes_;               // IndexRef: the tight boxes, by triangle
   HugeBuffer<AABB> box_storage_;    // the root builder's boxes_
   // A local builder (RecurseLocal): its references index boxes_ and
@@ -373,7 +384,8 @@ class Builder {
 
 }  // namespace
 
-absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config) {
+absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config,
+                                   const BuildLimits& limits) {
   if (absl::Status s = config.Validate(); !s.ok()) return s;
   if (soup.v.size() % 3 != 0) {
     return absl::InvalidArgumentError("triangle soup size is not a multiple of 3");
@@ -394,6 +406,7 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
                           ? tbb::this_task_arena::max_concurrency()
                           : config.build_threads;
   Fragment root;
+  BuildBudget budget(limits.max_bytes);
   const int max_depth = EffectiveMaxDepth(config, soup.size());
   const int parallel_depth = threads > 1 ? ParallelDepth(threads) : 0;
   absl::Status status;
@@ -410,9 +423,11 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
       std::copy(soup.v.begin() + 3 * begin, soup.v.begin() + 3 * end, tree.verts.begin() + 3 * begin);
     });
     if (UsesIndexRefs(config)) {
-      status = Builder<IndexRef>(soup, config, &root, max_depth, parallel_depth).Run(threads > 1);
+      status = Builder<IndexRef>(soup, config, &root, max_depth, parallel_depth, &budget)
+                   .Run(threads > 1);
     } else {
-      status = Builder<BuildRef>(soup, config, &root, max_depth, parallel_depth).Run(threads > 1);
+      status = Builder<BuildRef>(soup, config, &root, max_depth, parallel_depth, &budget)
+                   .Run(threads > 1);
     }
     if (!status.ok()) return;
     tree.bounds = root.tree.bounds;

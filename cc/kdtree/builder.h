@@ -28,8 +28,20 @@ namespace kdtree {
 // 8 + 1.3 log2 N; the sweep and hybrid split searches; perfect splits; leaf
 // pruning off (box-only); the collapse post-pass; and a parallel build
 // (buildThreads) that writes the same tree as the serial one.
-// Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs.
-absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config);
+// What a build may hold. A tree's size is not bounded by the triangle count:
+// with a deep maxDepth, triangles that straddle many split planes (a spatial
+// median on a small mesh) are referenced in exponentially many leaves. So the
+// build counts what it has made, at the size the finished tree will have
+// (nodes twice, for the leaf layout's copy; each leaf's list and its packets
+// of four triangles, leaf_layout.h), and fails once that passes max_bytes.
+struct BuildLimits {
+  uint64_t max_bytes = 0;  // 0: no limit but the 2^30 index range
+};
+
+// Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs,
+// or a tree over limits.max_bytes (ResourceExhausted, saying where it stopped).
+absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config,
+                                   const BuildLimits& limits = {});
 
 }  // namespace kdtree
 

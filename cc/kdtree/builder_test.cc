@@ -116,6 +116,33 @@ TEST(Builder, RejectsNonFiniteVerticesAndBadConfig) {
   EXPECT_FALSE(BuildKdTree(testing::BumpySphere(1, 1), bad).ok());
 }
 
+// A spatial-median tree 60 deep over a fan of triangles that share a vertex
+// never gets below two triangles per cell near it: it grows without bound,
+// and the build stops at its memory budget, serial or parallel.
+TEST(Builder, ARunawayTreeStopsAtItsMemoryBudget) {
+  TriangleSoup fan;
+  for (int i = 0; i < 8; ++i) {
+    const float a = 0.785398f * i, b = 0.785398f * (i + 1);
+    fan.Add({0, 0, 0}, {std::cos(a), std::sin(a), 0.3f}, {std::cos(b), std::sin(b), -0.3f});
+  }
+  Config c = *Preset("median-16-2");
+  c.max_depth = 60;
+  c.max_leaf_size = 1;
+  for (int threads : {1, 2}) {
+    c.build_threads = threads;
+    absl::StatusOr<KdTree> t = BuildKdTree(fan, c, BuildLimits{64 << 20});
+    ASSERT_FALSE(t.ok()) << threads;
+    EXPECT_EQ(t.status().code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_NE(t.status().message().find("more than the 0.07 GB it may use"), std::string::npos)
+        << t.status().message();
+  }
+  // Within a budget it fits, the same tree as with none.
+  const TriangleSoup soup = testing::BumpySphere(3, 5);
+  const KdTree free = *BuildKdTree(soup, *Preset("clipping-pruning"));
+  const KdTree bounded = *BuildKdTree(soup, *Preset("clipping-pruning"), BuildLimits{1 << 30});
+  EXPECT_EQ(TreeFingerprint(free), TreeFingerprint(bounded));
+}
+
 // Two arrays of the same size hold the same bytes.
 template <class V>
 bool SameBytes(const V& a, const V& b) {

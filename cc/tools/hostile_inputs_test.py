@@ -9,6 +9,7 @@ anything large is allocated).
 import gzip
 import json
 import os
+import resource
 import subprocess
 import tempfile
 import threading
@@ -96,6 +97,13 @@ class HostileInputsTest(unittest.TestCase):
                            + "light { position 0 5 0 }\n" * 10000)
         self.refused("more than the memory budget of 8.0 GB", "--mesh=" + OCTAHEDRON,
                      "--view=" + lights, "--memory_budget_gb=8")
+        # A spatial-median tree 60 deep on a small mesh grows without bound: the
+        # build stops at what the budget leaves for it, well under 1 GB here.
+        self.refused("kd-tree would need more than the 0.23 GB it may use", "--mesh=" + OCTAHEDRON,
+                     "--preset=median-16-2", "--max_depth=60", "--max_leaf_size=1",
+                     "--memory_budget_gb=0.5")
+        peak_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        self.assertLess(peak_kb, 1 << 20, "a refused run's peak memory")
 
     def test_numeric_extremes(self):
         tiny = self.file("tiny.obj", scaled_quad(1e-30))

@@ -213,11 +213,9 @@ absl::Status Run() {
     view_source = "auto";
   }
 
-  if (absl::Status st = CheckRunMemory(view, rc->config.cast_shadow_rays, soup->size(),
-                                       absl::GetFlag(FLAGS_memory_budget_gb));
-      !st.ok()) {
-    return st;
-  }
+  absl::StatusOr<uint64_t> tree_budget = CheckRunMemory(
+      view, rc->config.cast_shadow_rays, soup->size(), absl::GetFlag(FLAGS_memory_budget_gb));
+  if (!tree_budget.ok()) return tree_budget.status();
 
   progress.Phase("load");
   // Everything untimed first, then the timed rounds in one stretch under the
@@ -226,6 +224,7 @@ absl::Status Run() {
   // the timed builds (which free the warm trees first).
   progress.Step("warm-up builds");
   TimedBuilds b;
+  b.limits.max_bytes = *tree_budget;
   const auto step = [&progress](const std::string& what) { progress.Step(what); };
   absl::Status st = WarmUpBuilds(*soup, rc->config, use_embree ? &eo : nullptr, &b);
   if (!st.ok()) return st;

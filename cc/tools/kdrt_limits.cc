@@ -9,7 +9,8 @@
 
 namespace kdtree {
 
-absl::Status CheckRunMemory(const View& view, bool shadows, size_t triangles, double budget_gb) {
+absl::StatusOr<uint64_t> CheckRunMemory(const View& view, bool shadows, size_t triangles,
+                                        double budget_gb) {
   RenderOptions recording;
   recording.cast_shadow_rays = shadows;
   recording.record_rays = true;
@@ -20,11 +21,13 @@ absl::Status CheckRunMemory(const View& view, bool shadows, size_t triangles, do
   const uint64_t budget = budget_gb <= 0    ? DefaultMemoryBudget()
                           : budget_gb >= 1e9 ? ~uint64_t{0}
                                              : static_cast<uint64_t>(budget_gb * 1e9);
-  return CheckMemoryBudget(need, budget,
+  absl::Status st = CheckMemoryBudget(need, budget,
                            absl::StrFormat("rendering %dx%d with %zu lights%s and recording every ray",
                                            view.width, view.height, view.lights.size(),
                                            view.ao.enabled() ? " and ambient occlusion" : ""),
                            "kdrt --memory_budget_gb");
+  if (!st.ok()) return st;
+  return budget - need;
 }
 
 }  // namespace kdtree

@@ -1,5 +1,6 @@
 #include "cc/tools/timed_build.h"
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 
 namespace kdtree {
@@ -7,7 +8,12 @@ namespace {
 
 absl::StatusOr<double> BuildKd(const TriangleSoup& soup, const Config& config, TimedBuilds* b) {
   b->tree = absl::UnknownError("rebuilding");  // the old tree is freed first
-  b->tree = BuildKdTree(soup, config);
+  b->tree = BuildKdTree(soup, config, b->limits);
+  if (absl::IsResourceExhausted(b->tree.status())) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        b->tree.status().message(),
+        " (what the memory budget leaves after the renders; kdrt --memory_budget_gb)"));
+  }
   if (!b->tree.ok()) return b->tree.status();
   return b->tree->build_seconds;
 }

@@ -17,6 +17,7 @@
 namespace kdtree {
 
 struct TimedBuilds {
+  BuildLimits limits;  // set by the caller: what each kd-tree build may hold
   absl::StatusOr<KdTree> tree = absl::UnknownError("not built");  // the last build
   std::unique_ptr<EmbreeTracer> embree;                           // the last build, or none
   double kd_warmup = 0, embree_warmup = 0;                        // seconds, untimed
