@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "cc/base/mix64.h"
+
 namespace kdtree {
 namespace {
 
@@ -34,10 +36,7 @@ Ray ShadowRay(const SurfacePoint& sp, const Vec3& light) {
 }
 
 void HashUniforms(uint32_t pixel, uint32_t sample, float* r1, float* r2) {
-  uint64_t z = (static_cast<uint64_t>(pixel) << 32 | sample) + 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
+  const uint64_t z = Mix64(static_cast<uint64_t>(pixel) << 32 | sample);
   *r1 = static_cast<float>(z >> 40) * (1.0f / 16777216.0f);
   *r2 = static_cast<float>((z >> 8) & 0xffffff) * (1.0f / 16777216.0f);
 }

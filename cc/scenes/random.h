@@ -8,16 +8,12 @@
 
 #include <cstdint>
 
+#include "cc/base/mix64.h"
+
 namespace kdtree {
 namespace scenes {
 
-// SplitMix64 finaliser: a good 64-bit mix of any integer.
-inline uint64_t Mix64(uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
+using kdtree::Mix64;  // cc/base/mix64.h
 
 // Hash of a seed and integer lattice coordinates.
 inline uint64_t Hash(uint64_t seed, int64_t x, int64_t y = 0, int64_t z = 0) {
