@@ -1,14 +1,8 @@
 // libFuzzer target: the environment-file parser (env_file_fuzz.h). Aborts
 // when a promise is broken.
 //
-// Needs clang's libFuzzer runtime; the Bazel toolchain is gcc, so it is built
-// by hand from the workspace root:
-//
-//   clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -I. \
-//     cc/robust/env_file_fuzzer.cc cc/kdtree/env_file.cc cc/kdtree/config.cc \
-//     $(pkg-config --libs absl_statusor absl_str_format absl_strings) -o /tmp/env_file_fuzzer
-//   mkdir -p /tmp/env_corpus && cp experiments/presets/*.env /tmp/env_corpus/
-//   /tmp/env_file_fuzzer -max_total_time=3600 -max_len=1024 /tmp/env_corpus
+// Built and run with clang by cc/robust/fuzz.sh (`bash cc/robust/fuzz.sh 3600
+// env_file`; the Bazel toolchain is gcc, which has no libFuzzer).
 //
 // The deterministic smoke run inside `bazel test` is env_file_fuzz_test.cc.
 #include <cstddef>
