@@ -1,6 +1,6 @@
 """Accuracy versus time (issue 7): what each knob that buys tree accuracy
 costs in time and what it gives, from results/accuracy.jsonl written by
-experiments/accuracy.py (steps in experiments/accuracy.json).
+experiments/run_accuracy.py (steps in experiments/accuracy.json).
 
 Each record is one kdrt run (single thread) of one step on one scene: T_B
 (build), T_R (render: primary + shadow rays), total time to image T_B + T_R,

@@ -16,7 +16,7 @@ STEPS = [("report", "report clipping-pruning"), ("bins", "bins 32"),
 
 
 def rec(scene, knob, step, t_b, t_r, sah, ok=True, **over):
-    """A kdrt record (analysis/testdata.py) with experiments/accuracy.py's
+    """A kdrt record (analysis/testdata.py) with experiments/run_accuracy.py's
     fields (knob, step, ...)."""
     return testdata.kdrt_record(
         scene, "sah-hybrid", added=testdata.accuracy_fields(scene, knob, step),

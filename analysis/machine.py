@@ -1,5 +1,5 @@
 """Macros describing where the results were measured (results/machine.json,
-written by experiments/scenes.py)."""
+written by experiments/run_scenes.py)."""
 
 from analysis import latex
 
@@ -26,6 +26,6 @@ def macros(machine):
 def generate(ctx):
     machine = ctx.machine
     if not machine:
-        raise RuntimeError("no %s/machine.json: run experiments/scenes.py "
+        raise RuntimeError("no %s/machine.json: run experiments/run_scenes.py "
                            "first" % ctx.results_dir)
     return macros(machine)

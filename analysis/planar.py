@@ -1,5 +1,5 @@
 """Triangles lying in a split plane: what the report's strict partition loses
-(results/planar.jsonl from experiments/planar.py), the holes it leaves in the
+(results/planar.jsonl from experiments/run_planar.py), the holes it leaves in the
 image, and our default mode, which loses none.
 
 Output: planar.tex (a table per variant: references lost, primary hits in

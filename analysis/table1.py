@@ -2,7 +2,7 @@
 
 Input : the manifest (what each scene is, where it comes from, how many
         triangles it should have) and results/scenes.jsonl (what scene_info
-        actually loaded; written by experiments/scenes.py).
+        actually loaded; written by experiments/run_scenes.py).
 Output: table1.tex, plus the macros the text quotes about the scenes.
 """
 
@@ -186,7 +186,7 @@ def generate(ctx):
     records = ctx.results(SCENES_FILE)
     if not records:
         raise RuntimeError(
-            "no scene results in %s/%s: run experiments/scenes.py first"
+            "no scene results in %s/%s: run experiments/run_scenes.py first"
             % (ctx.results_dir, SCENES_FILE))
     seed = ctx.seed_table1
     rows = build_rows(ctx.manifest, records)

@@ -215,7 +215,7 @@ def matrix_fields(scene, preset, profile="quick", concurrent_jobs=1):
 
 
 def accuracy_fields(scene, knob, step, options=None):
-    """What experiments/accuracy.py adds to a successful kdrt record."""
+    """What experiments/run_accuracy.py adds to a successful kdrt record."""
     return {"ok": True, "job": [scene, step, 1, TREE], "knob": knob,
             "step": step, "options": options or {}, "profile": "quick",
             "wall_s": 2.0, "node": {"host": "fixture"}, "concurrent_jobs": 2}

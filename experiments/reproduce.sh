@@ -50,7 +50,7 @@ export KDTREE_SOURCE_ID
 echo "reproduce: code $KDTREE_SOURCE_ID (commit, dirty, source tree)"
 
 step "load scenes (scene_info)"
-"$PY" experiments/scenes.py --profile "$PROFILE" --out "$OUT" \
+"$PY" experiments/run_scenes.py --profile "$PROFILE" --out "$OUT" \
   --scene_info "$SCENE_INFO"
 
 step "scene 18 in the seed-compatible mode (row18.jsonl)"
@@ -68,7 +68,7 @@ step "kd-tree matrix: the report's nine variants, sah-packet and sah-packet-binn
   --out "$OUT"
 
 step "in-plane triangles: seed-compatible vs default mode on a voxel world"
-"$PY" experiments/planar.py --kdrt "$BIN/cc/tools/kdrt" --out "$OUT" || \
+"$PY" experiments/run_planar.py --kdrt "$BIN/cc/tools/kdrt" --out "$OUT" || \
   echo "reproduce: some planar runs failed (see above)" >&2
 
 step "robustness: the adversarial suite and what the watertight test costs"
@@ -102,7 +102,7 @@ fi
 
 step "accuracy versus time: what each step of tree accuracy costs ($PROFILE)"
 # experiments/accuracy.json; resumable (finished (scene, step) runs are skipped).
-"$PY" experiments/accuracy.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \
+"$PY" experiments/run_accuracy.py --profile "$PROFILE" --kdrt "$BIN/cc/tools/kdrt" \
   --out "$OUT" || echo "reproduce: some accuracy runs failed (see above)" >&2
 
 step "analysis (tables, figures, macros)"

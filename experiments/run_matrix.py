@@ -48,7 +48,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
 import provenance  # noqa: E402  (the code identity of the checkout)
-import scenes as scene_runner  # noqa: E402  (manifest/index readers)
+import run_scenes  # noqa: E402  (manifest/index readers)
 
 MATRIX = os.path.join(ROOT, "experiments", "matrix.json")
 RESULTS_FILE = "kdtree.jsonl"
@@ -280,7 +280,7 @@ def run_concurrently(items, run, jobs_at_once):
     ends (so its record is appended at once). When the caller stops early or
     is interrupted, the runs not yet started are dropped; those running finish
     (a kdrt process is never killed mid-way). The matrix and the accuracy
-    study (experiments/accuracy.py) both run their kdrt jobs through it."""
+    study (experiments/run_accuracy.py) both run their kdrt jobs through it."""
     pool = concurrent.futures.ThreadPoolExecutor(max(1, jobs_at_once))
     try:
         futures = [pool.submit(run, item) for item in items]
@@ -328,8 +328,8 @@ def main(argv=None):
     p.add_argument("--out", default=os.path.join(ROOT, "out"))
     p.add_argument("--kdrt", default=os.path.join(ROOT, "bazel-bin", "cc",
                                                   "tools", "kdrt"))
-    p.add_argument("--manifest", default=scene_runner.DEFAULT_MANIFEST)
-    p.add_argument("--index", default=scene_runner.DEFAULT_INDEX)
+    p.add_argument("--manifest", default=run_scenes.DEFAULT_MANIFEST)
+    p.add_argument("--index", default=run_scenes.DEFAULT_INDEX)
     p.add_argument("--scenes", default="", help="comma-separated subset")
     p.add_argument("--variants", default="", help="comma-separated subset")
     p.add_argument("--repeats", type=int, help="override the profile's")
@@ -370,10 +370,10 @@ def main(argv=None):
     if not os.path.exists(args.kdrt):
         print("run_matrix: no kdrt binary at %s" % args.kdrt, file=sys.stderr)
         return 2
-    manifest = scene_runner.load_manifest(args.manifest)
+    manifest = run_scenes.load_manifest(args.manifest)
     try:
-        index = scene_runner.load_index(args.index)
-    except scene_runner.SetupError as e:
+        index = run_scenes.load_index(args.index)
+    except run_scenes.SetupError as e:
         print("run_matrix: %s" % e, file=sys.stderr)
         return 2
     jobs = plan(args.profile, matrix, manifest, index,

@@ -2,7 +2,7 @@
 """Loads every obtained scene of a profile with scene_info; records the raw
 results and the machine they were measured on.
 
-    /usr/bin/python3 experiments/scenes.py --profile quick [--out out]
+    /usr/bin/python3 experiments/run_scenes.py --profile quick [--out out]
 
 Reads   data/manifest.json (which scenes belong to the profile) and
         data/cache/scenes/index.json (which of them data/fetch.py obtained),

@@ -1,4 +1,4 @@
-"""Tests of experiments/scenes.py (the runner that feeds table1), with a fake
+"""Tests of experiments/run_scenes.py (the runner that feeds table1), with a fake
 scene_info written to a temp dir. Lives here because experiments/ holds only
 runners; the fake binary never touches real results."""
 
@@ -10,7 +10,7 @@ import tempfile
 import unittest
 from contextlib import redirect_stdout, redirect_stderr
 
-from experiments import scenes
+from experiments import run_scenes
 
 FAKE_SCENE_INFO = """#!/usr/bin/python3
 import argparse, json, os, sys
@@ -72,7 +72,7 @@ class ScenesRunnerTest(unittest.TestCase):
 
     def run_profile(self, profile="quick", **kw):
         with redirect_stdout(io.StringIO()), redirect_stderr(io.StringIO()):
-            return scenes.run(profile, self.out, manifest=self.manifest,
+            return run_scenes.run(profile, self.out, manifest=self.manifest,
                               index=self.index, scene_info=self.bin,
                               soup_cache=os.path.join(self.tmp.name, "soups"),
                               progress=False, **kw)
@@ -141,10 +141,10 @@ class ScenesRunnerTest(unittest.TestCase):
 
     def test_missing_index_or_binary(self):
         os.unlink(self.index)
-        with self.assertRaises(scenes.SetupError):
+        with self.assertRaises(run_scenes.SetupError):
             self.run_profile()
-        with self.assertRaises(scenes.SetupError):
-            scenes.run("quick", self.out, manifest=self.manifest,
+        with self.assertRaises(run_scenes.SetupError):
+            run_scenes.run("quick", self.out, manifest=self.manifest,
                        index=self.index, scene_info="/nonexistent/scene_info",
                        progress=False)
 
@@ -154,28 +154,28 @@ class ScenesRunnerTest(unittest.TestCase):
 
     def test_main_exit_codes(self):
         with redirect_stdout(io.StringIO()), redirect_stderr(io.StringIO()):
-            ok = scenes.main(["--profile", "test", "--out", self.out,
+            ok = run_scenes.main(["--profile", "test", "--out", self.out,
                               "--manifest", self.manifest,
                               "--index", self.index,
                               "--scene_info", self.bin, "--no_progress",
                               "--cache_dir",
                               os.path.join(self.tmp.name, "soups")])
-            missing = scenes.main(["--profile", "test", "--out", self.out,
+            missing = run_scenes.main(["--profile", "test", "--out", self.out,
                                    "--index", self.index + ".nope",
                                    "--scene_info", self.bin])
         self.assertEqual((ok, missing), (0, 2))
 
     def test_last_json_line(self):
-        self.assertEqual(scenes.last_json_line('x\n{"a": 1}\n{bad\n'),
+        self.assertEqual(run_scenes.last_json_line('x\n{"a": 1}\n{bad\n'),
                          {"a": 1})
-        self.assertIsNone(scenes.last_json_line("nothing"))
+        self.assertIsNone(run_scenes.last_json_line("nothing"))
 
     def test_cpu_model(self):
         path = os.path.join(self.tmp.name, "cpuinfo")
         with open(path, "w") as f:
             f.write("processor\t: 0\nmodel name\t: Intel(R)  Core(TM) "
                     "i7-8565U CPU @ 1.80GHz\n")
-        self.assertEqual(scenes.cpu_model(path),
+        self.assertEqual(run_scenes.cpu_model(path),
                          "Intel(R) Core(TM) i7-8565U CPU @ 1.80GHz")
 
 

@@ -4,7 +4,7 @@ exactly in an integer plane, where split planes fall) built with each of the
 nine variants in the seed-compatible mode (its strict partition loses
 triangles that lie in a split plane) and in our default mode (loses none).
 
-    /usr/bin/python3 experiments/planar.py --kdrt PATH [--scene lost-empire]
+    /usr/bin/python3 experiments/run_planar.py --kdrt PATH [--scene lost-empire]
 
 Writes OUT/results/planar.jsonl (one kdrt record per variant and mode,
 append-only; a (scene, variant, mode) already recorded is not rerun) and the

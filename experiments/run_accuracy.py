@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Runs the accuracy-versus-time study of experiments/accuracy.json.
 
-    /usr/bin/python3 experiments/accuracy.py --profile quick \
+    /usr/bin/python3 experiments/run_accuracy.py --profile quick \
         --kdrt bazel-out/k8-opt/bin/cc/tools/kdrt [--out out]
 
 For every scene of the profile and every step, kdrt builds and renders with
@@ -27,7 +27,7 @@ sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
 import provenance  # noqa: E402
 import run_matrix  # noqa: E402
-import scenes as scene_runner  # noqa: E402
+import run_scenes  # noqa: E402
 
 STUDY = os.path.join(ROOT, "experiments", "accuracy.json")
 RESULTS_FILE = "accuracy.jsonl"
@@ -103,8 +103,8 @@ def main(argv=None):
     parser.add_argument("--kdrt", required=True)
     parser.add_argument("--out", default=os.path.join(ROOT, "out"))
     parser.add_argument("--study", default=STUDY)
-    parser.add_argument("--manifest", default=scene_runner.DEFAULT_MANIFEST)
-    parser.add_argument("--index", default=scene_runner.DEFAULT_INDEX)
+    parser.add_argument("--manifest", default=run_scenes.DEFAULT_MANIFEST)
+    parser.add_argument("--index", default=run_scenes.DEFAULT_INDEX)
     parser.add_argument("--scenes", default="",
                         help="comma-separated subset of the profile's scenes")
     parser.add_argument("--knobs", default="",
@@ -121,8 +121,8 @@ def main(argv=None):
     if args.profile not in study["profiles"]:
         print("accuracy: unknown profile %s" % args.profile, file=sys.stderr)
         return 2
-    manifest = scene_runner.load_manifest(args.manifest)
-    index = scene_runner.load_index(args.index)
+    manifest = run_scenes.load_manifest(args.manifest)
+    index = run_scenes.load_index(args.index)
     jobs = plan(args.profile, study, manifest, index,
                 [s for s in args.scenes.split(",") if s])
     results_dir = os.path.join(args.out, "results")
