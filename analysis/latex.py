@@ -108,7 +108,8 @@ def booktabs(header, rows, align, caption=None, label=None, notes=None,
              with \cmidrule under each group of span > 1.
     notes  : optional list of already-LaTeX lines set below the table.
     fit_width : shrink the tabular to the line width if (only if) it is
-             wider (needs \usepackage{adjustbox}).
+             wider: report/main.tex's fittable environment, which also logs
+             the table's size (analysis/table_scale.py).
     """
     ncols = _count_columns(align)
     if len(header) != ncols:
@@ -130,7 +131,7 @@ def booktabs(header, rows, align, caption=None, label=None, notes=None,
     if size:
         out.append("\\%s\n" % size)
     if fit_width:
-        out.append("\\begin{adjustbox}{max width=\\linewidth}\n")
+        out.append("\\begin{fittable}{%s}\n" % (label or "unlabelled"))
     out.append("\\begin{tabular}{%s}\n\\toprule\n" % align)
     if groups:
         if sum(span for _, span in groups) != ncols:
@@ -154,7 +155,7 @@ def booktabs(header, rows, align, caption=None, label=None, notes=None,
             out.append(" & ".join(row) + " \\\\\n")
     out.append("\\bottomrule\n\\end{tabular}\n")
     if fit_width:
-        out.append("\\end{adjustbox}\n")
+        out.append("\\end{fittable}\n")
     if notes:
         out.append("\\par\\smallskip\n\\begin{minipage}{0.95\\linewidth}"
                    "\\footnotesize\n")

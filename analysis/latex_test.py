@@ -82,10 +82,10 @@ class BooktabsTest(unittest.TestCase):
                               align="lr", caption="Cap", label="tab:x",
                               size="small")
         order = ["\\begin{table}", "\\caption{Cap}", "\\label{tab:x}",
-                 "\\small", "\\begin{adjustbox}", "\\begin{tabular}{lr}",
+                 "\\small", "\\begin{fittable}{tab:x}", "\\begin{tabular}{lr}",
                  "\\toprule", "a & b \\\\", "\\midrule", "1 & 2 \\\\",
                  "\\midrule", "3 & 4 \\\\", "\\bottomrule", "\\end{tabular}",
-                 "\\end{adjustbox}", "\\end{table}"]
+                 "\\end{fittable}", "\\end{table}"]
         pos = 0
         for token in order:
             found = text.find(token, pos)
@@ -97,7 +97,7 @@ class BooktabsTest(unittest.TestCase):
         text = latex.booktabs(["a"], [["1"]], align="l", floating=False,
                               fit_width=False)
         self.assertNotIn("\\begin{table}", text)
-        self.assertNotIn("adjustbox", text)
+        self.assertNotIn("fittable", text)
         self.assertTrue(text.startswith("\\begin{tabular}{l}"))
 
     def test_column_count_checked(self):
