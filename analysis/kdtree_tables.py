@@ -64,7 +64,7 @@ def render(df, scenes, variants, columns, caption, label):
         body = [["", "\\emph{no kd-tree runs}"] + [""] * (len(header) - 2)]
     return latex.booktabs(header, body, align="rl" + "r" * (len(header) - 2),
                           groups=groups, caption=caption, label=label,
-                          size="scriptsize")
+                          size="footnotesize")  # on landscape pages (report/main.tex)
 
 
 def generate(ctx):
