@@ -201,7 +201,7 @@ def render(data):
                        unpaired, "" if unpaired == 1 else "s",
                        "s" if unpaired == 1 else "") if unpaired else ""))
     return latex.booktabs(header, body, align="lrlrrrrrrrrrrrrrrr", caption=caption,
-                          label="tab:embree", size="scriptsize")
+                          label="tab:embree", size="footnotesize")
 
 
 # The figure's series: (row key, label, marker).

@@ -105,7 +105,7 @@ def render(data):
                "over the rounds of one run in which the two alternated; "
                "binned/B8D divides the report variant's time by ours.")
     return latex.booktabs(header, body, align="lrrrrrrrrrrr", caption=caption,
-                          label="tab:embree-build", size="scriptsize")
+                          label="tab:embree-build", size="footnotesize")
 
 
 def generate(ctx):
