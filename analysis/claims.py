@@ -231,7 +231,7 @@ def evaluate(df):
 
 def render(results):
     header = ["Where", "The report says", "Our test (per scene)",
-              "Agree / decided", "Within noise", "Median ratio", "Verdict"]
+              "Agree", "Noise", "Median", "Verdict"]
     body = []
     for claim, agree, decided, noise, median, verdict_ in results:
         body.append([claim[1], claim[2], claim[3],
@@ -247,11 +247,12 @@ def render(results):
                "scenes are; otherwise it is confirmed when at least two "
                "thirds of the decided scenes agree, refuted when at most one "
                "third do, and mixed in between. The median ratio is taken "
-               "over the medians of the runs.")
+               "over the medians of the runs. Agree: scenes that agree / scenes "
+               "decided; Noise: scenes within noise; Median: the median ratio.")
     return latex.booktabs(header, body,
-                          align="l p{3.9cm} p{3.9cm} r r r l",
+                          align="l p{4.2cm} p{4.2cm} r r r l",
                           caption=caption, label="tab:claims",
-                          size="scriptsize")
+                          size="footnotesize")
 
 
 def generate(ctx):

@@ -84,7 +84,7 @@ class ClaimsTest(testdata.KdtreeFixtureTest):
         with open(os.path.join(self.out, "claims.tex")) as f:
             text = f.read()
         self.assertIn("within noise", text)
-        self.assertIn("Agree / decided", text)
+        self.assertIn("Agree & Noise & Median & Verdict", text)
         self.assertIn("& 3/3 & 0 &", text)
 
 

@@ -85,7 +85,7 @@ class EmbreeTest(Fixture):
         self.assertEqual(macros["EmbreePacketRatioMedian"][0], "0.80")
         self.assertEqual(macros["EmbreePacketBigScenes"][0], "1")
         text = self.read("embree.tex")
-        self.assertIn("& 0.80 & 1.25 &", text)
+        self.assertIn("& 0.80 & 1.25 \\\\", text)
         # Not a run of the report's tables.
         self.assertEqual(kdtree_tables.generate(self.ctx)["NumKdRuns"][0], "27")
 
