@@ -172,8 +172,10 @@ def render_compare(seed, best_seed, best_ours):
         "and lights differ from the report's, so the rays traced are not "
         "the same. A fraction after our scene's name counts the presets "
         "that ran when fewer than nine did.")
-    return latex.booktabs(header, body, align="rlrlrlllrlrl", groups=groups,
-                          caption=caption, label="tab:seedcmp",
+    best = ">{\\raggedright\\arraybackslash}p{2.6cm}"  # a "best of" list wraps
+    return latex.booktabs(header, body,
+                          align="rlr%sr%sllr%sr%s" % (best, best, best, best),
+                          groups=groups, caption=caption, label="tab:seedcmp",
                           size="footnotesize")
 
 

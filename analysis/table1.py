@@ -144,8 +144,8 @@ def render(rows, seed):
         "\\emph{Expected} comes from the manifest; \\emph{Check} is "
         "\\checkmark{} when they agree, else the difference. \\emph{Licence} "
         "stops before its first parenthesis; the manifest says where it is stated.")
-    return latex.booktabs(header, body, align=("rllrrrl"
-                                 ">{\\raggedright\\arraybackslash}p{2.8cm}"),
+    wrap = ">{\\raggedright\\arraybackslash}p{%s}"  # source and licence wrap
+    return latex.booktabs(header, body, align="rllrrr" + wrap % "3.0cm" + wrap % "2.4cm",
                           caption=caption, label="tab:scenes",
                           notes=notes or None, size="footnotesize")
 
