@@ -72,6 +72,7 @@ for name in "${FUZZERS[@]}"; do
   [ "$name" = env_file ] && cp -n experiments/presets/*.env "$corpus/" 2>/dev/null || true
   start=$(date -u +%Y-%m-%dT%H:%M:%SZ)
   t0=$(date +%s)
+  commit=$(git rev-parse --short HEAD 2>/dev/null || echo none)  # what was built
   set +e
   # shellcheck disable=SC2046
   scratch="$(mktemp -d)"  # the mesh cases write their files here
@@ -86,6 +87,6 @@ for name in "${FUZZERS[@]}"; do
   [ -z "$execs" ] && execs=$(grep -o '^#[0-9]*' "$OUT/$name.log" | tail -1 | tr -d '#')
   findings=$(ls "$OUT/$name" | wc -l)
   printf '{"date": "%s", "commit": "%s", "fuzzer": "%s", "seconds": %s, "executions": %s, "exit_code": %s, "findings": %s, "corpus_files": %s}\n' \
-    "$start" "$(git rev-parse --short HEAD 2>/dev/null || echo none)" "$name" "$elapsed" \
+    "$start" "$commit" "$name" "$elapsed" \
     "${execs:-0}" "$code" "$findings" "$(ls "$corpus" | wc -l)" | tee -a "$OUT/runs.jsonl"
 done

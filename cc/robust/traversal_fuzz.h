@@ -17,8 +17,9 @@ namespace robust {
 // triangles of 9 values, then rays of 6 values (direction values from a set
 // with +0, -0, denormals and +-1 in the dyadic alphabet). Triangles with
 // non-finite or absurd coordinates are dropped first, as at load.
-// Returns the number of disagreements with brute force (0 when correct);
-// never crashes or hangs on any input.
+// Every preset's build gets 64 MB (BuildLimits); a build over it has no tree
+// to check. Returns the number of disagreements with brute force (0 when
+// correct); never crashes or hangs on any input.
 size_t TraversalFuzzCase(const uint8_t* data, size_t size);
 
 }  // namespace robust
