@@ -257,15 +257,6 @@ bool FinishUndecided(const WatertightRay& r, const Sheared& s, float bound, cons
 
 }  // namespace watertight_internal
 
-// True when the watertight test certainly rejects triangle (a, b, c) on its
-// edge functions' signs alone (the step RejectMask4 takes for four triangles
-// at once, cc/kdtree/packet_reject.h).
-inline bool WatertightRejects(const WatertightRay& r, const Vec3& a, const Vec3& b,
-                              const Vec3& c) {
-  const watertight_internal::Sheared s = watertight_internal::Shear(r, a, b, c);
-  return watertight_internal::SignsDisagree(s.e, watertight_internal::EdgeErrorBound(r, s));
-}
-
 // Returns true and sets *t, *u, *v when the ray hits triangle (a, b, c) with
 // tmin < t <= tmax (and t above its rounding-error bound). Edges and vertices
 // are inclusive; a ray in the triangle's plane misses, and so does every ray

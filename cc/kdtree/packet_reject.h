@@ -16,7 +16,7 @@ namespace kdtree {
 // beyond +EdgeErrorBound, the smallest beyond -EdgeErrorBound, watertight.h),
 // or, with `behind` (tmin >= 0), its three vertex depths z = sz (v[kz] -
 // o[kz]) are negative. SSE single precision performs the very IEEE operations
-// of WatertightRejects and IntersectTriangleWatertight (watertight.h) in the
+// of IntersectTriangleWatertight's first step (watertight.h) in the
 // same order (no contraction: -ffp-contract=off), so a set bit is a lane that
 // test rejects, and a clear bit means it decides exactly as without this step.
 // (A NaN edge function may clear a bit the scalar test would set: that lane

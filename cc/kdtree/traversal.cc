@@ -208,7 +208,6 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         bool hit;
         if (kMode == IntersectionMode::kWatertight) {
           const Vec3* p = verts + 3 * static_cast<size_t>(tri);
-          if (WatertightRejects(wray, p[0], p[1], p[2])) continue;
           hit = IntersectTriangleWatertight(wray, p[0], p[1], p[2], ray.tmin, best.t, &t, &u, &v);
         } else {
           hit = IntersectTriangle(ray, tree.tris[tri], ray.tmin, best.t, &t, &u, &v);
