@@ -9,7 +9,8 @@ least half of its tested scenes are; otherwise it is confirmed when at least
 two thirds of the decided scenes agree, refuted when at most one third do,
 mixed in between. Output: claims.tex (a table: claim, test, scenes agreeing
 of those decided, scenes within noise, median ratio of the medians,
-verdict) and macros with the counts.
+verdict), claims_brief.tex (one line per claim, for the findings page) and
+macros with the counts.
 """
 
 import statistics
@@ -193,6 +194,25 @@ CLAIMS = [
 ]
 
 
+# Each claim in a few words, for the findings page (claims_brief.tex).
+SHORT = {
+    "depth": "depth 24 cuts triangle tests, adds node visits",
+    "leafrefs": "depth 24 cuts the references per leaf",
+    "emptyleaves": "leaf size 8 lowers the share of empty leaves",
+    "notmaxdepth": "most leaves stop above the maximum depth",
+    "drivingbuild": "the driving axis builds faster, renders as fast",
+    "bins": "32 bins build no slower than 8",
+    "allaxes": "all three axes: fewer leaves, less memory",
+    "binningalike": "the three binnings differ little",
+    "clipnotbetter": "clipping adds nothing to pruning",
+    "manyclipped": "clipping clips more triangles than the scene has",
+    "fewerpruned": "fewer triangles pruned with clipping on",
+    "drivingfastest": "the driving axis builds fastest of the binnings",
+    "clipbuildcost": "clipping and pruning cost little build time",
+    "clipfastest": "the clipping/pruning variants render fastest",
+}
+
+
 def verdict(agree, decided, noise):
     """Within noise when at least half the tested scenes are; else two
     thirds of the decided scenes confirm, one third or fewer refute."""
@@ -255,11 +275,24 @@ def render(results):
                           size="footnotesize")
 
 
+def render_brief(results):
+    """One line per claim for the findings page: where, the claim in a few
+    words, the verdict, scenes agreeing of those decided."""
+    lines = ["\\begin{tabular}{@{}l l l r@{}}"]
+    for claim, agree, decided, noise, _, verdict_ in results:
+        lines.append("%s & %s & \\textbf{%s} & %d/%d%s \\\\"
+                     % (claim[1], SHORT[claim[0]], verdict_, agree, decided,
+                        " (%d in noise)" % noise if noise else ""))
+    lines.append("\\end{tabular}")
+    return "\n".join(lines) + "\n"
+
+
 def generate(ctx):
     df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
     provenance.check_frame(ctx, df, "the claims table")
     results = evaluate(df)
     ctx.write("claims.tex", render(results))
+    ctx.write("claims_brief.tex", render_brief(results))
     counts = dict.fromkeys(VERDICTS, 0)
     for *_, verdict_ in results:
         counts[verdict_] += 1

@@ -86,6 +86,12 @@ class ClaimsTest(testdata.KdtreeFixtureTest):
         self.assertIn("within noise", text)
         self.assertIn("Agree & Noise & Median & Verdict", text)
         self.assertIn("& 3/3 & 0 &", text)
+        with open(os.path.join(self.out, "claims_brief.tex")) as f:
+            brief = f.read()
+        self.assertEqual(brief.count("\\\\"), len(claims.CLAIMS))
+        self.assertIn("clipping adds nothing to pruning & \\textbf{confirmed} & 3/3 \\\\", brief)
+        self.assertIn("(3 in noise)", brief)
+        self.assertEqual(sorted(claims.SHORT), sorted(c[0] for c in claims.CLAIMS))
 
 
 if __name__ == "__main__":

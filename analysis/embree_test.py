@@ -84,6 +84,10 @@ class EmbreeTest(Fixture):
         self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")
         self.assertEqual(macros["EmbreePacketRatioMedian"][0], "0.80")
         self.assertEqual(macros["EmbreePacketBigScenes"][0], "1")
+        # Ours over the report's final variant, through Embree: 0.80 / 0.50.
+        self.assertEqual(macros["OursOverFinalRatioMedian"][0], "1.60")
+        self.assertEqual(macros["OursFastOverFinalRatioMedian"][0], "2.50")
+        self.assertNotIn("OursOverFinalBigScenes", macros)
         text = self.read("embree.tex")
         self.assertIn("& 0.80 & 1.25 \\\\", text)
         # Not a run of the report's tables.

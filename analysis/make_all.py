@@ -30,7 +30,9 @@ if __package__ in (None, ""):
 
 from analysis import accuracy  # noqa: E402
 from analysis import claims  # noqa: E402
+from analysis import clipping_errata  # noqa: E402
 from analysis import context  # noqa: E402
+from analysis import cost_images  # noqa: E402
 from analysis import embree  # noqa: E402
 from analysis import embree_build  # noqa: E402
 from analysis import figures  # noqa: E402
@@ -53,10 +55,12 @@ GENERATORS = [
     table1,
     seed_tables,
     row18,
+    clipping_errata,
     planar,
     figures,
     kdtree_tables,
     kdtree_figures,
+    cost_images,
     claims,
     embree,
     embree_build,

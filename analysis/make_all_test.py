@@ -6,6 +6,7 @@ import tempfile
 import unittest
 
 from analysis import accuracy
+from analysis import clipping_errata
 from analysis import make_all
 from analysis import provenance_macros
 from analysis import robustness
@@ -36,8 +37,12 @@ EXPECTED_MACROS = [
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
     "BinnedScenes", "BinnedBuildOverEmbreeMedian", "BinnedPerfOverEmbreeMedian",
     "BinnedBuildOverReportMedian", "BinnedPerfOverReportMedian", "BinnedBeatsReportBoth",
-    "BinnedComparedWithReport", "GalleryImages"
-] + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
+    "BinnedComparedWithReport", "GalleryImages",
+    "CostImageFigures", "CostImageScenes", "CostImagesRefused",
+    "OursOverFinalScenes", "OursOverFinalRatioMedian", "OursOverFinalRatioMin",
+    "OursOverFinalRatioMax", "OursFastOverFinalScenes", "OursFastOverFinalRatioMedian",
+    "OursFastOverFinalRatioMin", "OursFastOverFinalRatioMax",
+] + clipping_errata.MACROS + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
     provenance_macros.MACROS
 
 

@@ -68,8 +68,17 @@ def job_key(scene, variant, settings):
     """What makes two runs the same job: the scene, the variant, the
     profile's settings and the code (settings["source_tree"], the checkout's
     identity when the plan was made)."""
-    return (scene, variant, int(settings["repeats"]), int(settings["threads"]),
-            embree_mode(variant, settings), settings.get("source_tree"))
+    key = (scene, variant, int(settings["repeats"]), int(settings["threads"]),
+           embree_mode(variant, settings), settings.get("source_tree"))
+    # A run that writes a cost image is another job (an older run of the
+    # same code without one is not done).
+    return key + ("cost_image",) if wants_cost_image(scene, settings) else key
+
+
+def wants_cost_image(scene, settings):
+    """Whether kdrt writes the scene's cost image (matrix.json's
+    cost_image_scenes): per-pixel N_TR / N_IT, cc/render/cost_image.h."""
+    return scene in settings.get("cost_images", [])
 
 
 def embree_timed(variant, settings):
@@ -119,7 +128,7 @@ def plan(profile, matrix, manifest, index, scenes=None, variants=None):
     return [(n, index[n], v) for n in names if n in index for v in chosen]
 
 
-def kdrt_command(kdrt, scene, variant, settings, image=None):
+def kdrt_command(kdrt, scene, variant, settings, image=None, cost_image=None):
     # The preset by name (experiments/presets/<variant>.env holds the same
     # configuration, checked by //cc/kdtree:env_file_test).
     cmd = [kdrt, "--scene", scene, "--preset", variant,
@@ -134,6 +143,8 @@ def kdrt_command(kdrt, scene, variant, settings, image=None):
         # Also the renderer's fastest mode (kdrt --fast_render: record field
         # fast_render, the analysis's T_R_fast).
         cmd += ["--fast_render"]
+    if cost_image:
+        cmd += ["--cost_image", cost_image]
     return cmd + ["--image", image] if image else cmd
 
 
@@ -166,10 +177,13 @@ def node_info():
 
 def run_job(kdrt, scene, variant, settings, out, profile):
     """Runs kdrt for one job; returns the record to append. The image goes
-    to OUT/images/<scene>_<variant>.png."""
+    to OUT/images/<scene>_<variant>.png, the cost image (when the scene
+    has one) to OUT/costs/<scene>_<variant>.npy.gz."""
     image = os.path.join(os.path.abspath(out), "images",
                          "%s_%s.png" % (scene, variant))
-    cmd = kdrt_command(kdrt, scene, variant, settings, image)
+    cost = (os.path.join(os.path.abspath(out), "costs", "%s_%s.npy.gz" % (scene, variant))
+            if wants_cost_image(scene, settings) else None)
+    cmd = kdrt_command(kdrt, scene, variant, settings, image, cost)
     returncode, stderr, lines, wall, cmd = run_kdrt(cmd)
     if returncode != 0 or not lines:
         return {"ok": False, "job": job_key(scene, variant, settings),
@@ -359,6 +373,7 @@ def main(argv=None):
     settings = dict(matrix["profiles"][args.profile])
     settings["fast_render"] = matrix.get("fast_render_variants", [])
     settings["embree_timed"] = matrix.get("embree_timed_variants")
+    settings["cost_images"] = matrix.get("cost_image_scenes", [])
     if args.repeats:
         settings["repeats"] = args.repeats
     if args.embree:

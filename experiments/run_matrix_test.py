@@ -130,6 +130,21 @@ class RunMatrixTest(unittest.TestCase):
         self.assertNotIn("--fast_render", run_matrix.kdrt_command("k", "a", "pruning", s))
         self.assertIn("sah-packet", run_matrix.load_matrix()["fast_render_variants"])
 
+    def test_cost_images_only_for_the_listed_scenes(self):
+        s = {"repeats": 1, "threads": 1, "embree": "off", "source_tree": "t",
+             "cost_images": ["city"]}
+        self.assertTrue(run_matrix.wants_cost_image("city", s))
+        self.assertFalse(run_matrix.wants_cost_image("bunny", s))
+        cmd = run_matrix.kdrt_command("k", "city", "pruning", s, "i.png", "c.npy.gz")
+        self.assertEqual(cmd[cmd.index("--cost_image") + 1], "c.npy.gz")
+        self.assertNotIn("--cost_image", run_matrix.kdrt_command("k", "bunny", "pruning", s))
+        # A run without the cost image is not the job that writes one.
+        self.assertNotEqual(run_matrix.job_key("city", "pruning", s),
+                            run_matrix.job_key("city", "pruning", dict(s, cost_images=[])))
+        self.assertEqual(run_matrix.job_key("bunny", "pruning", s),
+                         run_matrix.job_key("bunny", "pruning", dict(s, cost_images=[])))
+        self.assertIn("city", run_matrix.load_matrix()["cost_image_scenes"])
+
     def test_embree_timed_only_on_the_listed_variants(self):
         s = {"repeats": 1, "threads": 1, "embree": "medium",
              "embree_timed": ["clipping-pruning"], "source_tree": "t"}

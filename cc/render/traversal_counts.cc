@@ -2,10 +2,12 @@
 
 namespace kdtree {
 
-RayCounts CountTraversal(const KdTree& tree, const std::vector<RayRecord>& records) {
+RayCounts CountTraversal(const KdTree& tree, const std::vector<RayRecord>& records,
+                         CostImage* per_pixel) {
   RayCounts counts;
   for (const RayRecord& rec : records) {
-    TraversalCounters* c = &counts.by_kind[static_cast<int>(rec.kind)];
+    TraversalCounters ray_counts;
+    TraversalCounters* c = &ray_counts;
     const Ray ray = rec.ray();
     if (rec.kind == RayKind::kPrimary) {
       const Hit hit = Intersect(tree, ray, c);
@@ -13,6 +15,10 @@ RayCounts CountTraversal(const KdTree& tree, const std::vector<RayRecord>& recor
       counts.result_mismatches += !same;
     } else {
       counts.result_mismatches += Occluded(tree, ray, c) != (rec.hit != 0);
+    }
+    counts.by_kind[static_cast<int>(rec.kind)].Add(ray_counts);
+    if (per_pixel != nullptr) {
+      per_pixel->Add(rec.pixel, rec.kind, ray_counts.inner_visits, ray_counts.triangle_tests);
     }
   }
   for (const TraversalCounters& c : counts.by_kind) counts.all.Add(c);

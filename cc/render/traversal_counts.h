@@ -11,6 +11,7 @@
 
 #include "cc/kdtree/traversal.h"
 #include "cc/kdtree/tree.h"
+#include "cc/render/cost_image.h"
 #include "cc/render/ray_record.h"
 
 namespace kdtree {
@@ -27,8 +28,11 @@ struct RayCounts {
   double n_tr() const { return all.rays ? double(all.inner_visits) / all.rays : 0.0; }
 };
 
-// Primary records with Intersect, shadow and AO records with Occluded.
-RayCounts CountTraversal(const KdTree& tree, const std::vector<RayRecord>& records);
+// Primary records with Intersect, shadow and AO records with Occluded. With
+// `per_pixel` (sized to the frame), each ray's counts are also added to the
+// pixel it came from.
+RayCounts CountTraversal(const KdTree& tree, const std::vector<RayRecord>& records,
+                         CostImage* per_pixel = nullptr);
 
 }  // namespace kdtree
 

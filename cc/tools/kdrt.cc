@@ -58,6 +58,7 @@
 #include "cc/render/png.h"
 #include "cc/render/ray_dump.h"
 #include "cc/render/renderer.h"
+#include "cc/render/cost_image.h"
 #include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
@@ -91,6 +92,7 @@ ABSL_FLAG(int, repeats, 5, "Builds and renders per tracer; medians are reported.
 ABSL_FLAG(double, repeat_budget_s, 0,
           "Stop repeating a timed build or render once its runs took this many seconds in all "
           "(at least one run; 0 = always --repeats runs). Every run is recorded.");
+ABSL_FLAG(std::string, cost_image, "", "Write per-pixel N_TR / N_IT per ray kind here (cost_image.h; .npy.gz).");
 ABSL_FLAG(std::string, dump_rays, "", "Write every ray and its kd-tree result here (cc/render/ray_dump.h).");
 ABSL_FLAG(std::string, embree, "off", "off | low | medium | high: also build and render with Embree.");
 ABSL_FLAG(bool, embree_rounds, true,
@@ -259,7 +261,14 @@ absl::Status Run() {
   RenderResult recorded = Render(*soup, kd, view, rec_opt);
   lanes.front().warmup_s = recorded.seconds;
   progress.Phase("recording render (kd-tree warm-up)", "counting pass");
-  const RayCounts counts = CountTraversal(tree, recorded.rays);
+  const std::string cost_path = FromInvocationDir(absl::GetFlag(FLAGS_cost_image));
+  CostImage cost(cost_path.empty() ? 0 : view.width, cost_path.empty() ? 0 : view.height);
+  const RayCounts counts = CountTraversal(tree, recorded.rays, cost_path.empty() ? nullptr : &cost);
+  if (!cost_path.empty() && !(st = WriteFile(cost_path, [&](const std::string& p) {
+                                return WriteCostImageNpyGz(p, cost);
+                              })).ok()) {
+    return st;
+  }
   progress.Phase("counting pass");
   Json disagreements;
   if (use_embree) {
