@@ -89,9 +89,11 @@ def pareto(points):
 
 
 def figure(ctx, recs, scenes, steps):
-    cols = min(3, len(scenes))
+    # At most two panels a row, 3.2 in each: set at the text width (6.5 in),
+    # not shrunk below 80 % (analysis/table_scale.py).
+    cols = min(2, len(scenes))
     rows = int(math.ceil(len(scenes) / float(cols)))
-    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows),
+    fig, axes = plt.subplots(rows, cols, figsize=(3.2 * cols, 3.0 * rows),
                              squeeze=False)
     knobs = []
     for k, _ in steps:
@@ -128,7 +130,7 @@ def figure(ctx, recs, scenes, steps):
     ctx.written.append("accuracy_pareto.pdf")
     ctx.write("accuracy_figure.tex",
               "\\begin{figure}[htbp]\\centering\n"
-              "\\includegraphics[width=\\linewidth]{generated/accuracy_pareto.pdf}\n"
+              "\\generatedfigure{accuracy_pareto.pdf}\n"
               "\\caption{Total time to image (single thread: build plus render "
               "of the primary and shadow rays) against the tree's SAH cost, one "
               "point per step of experiments/accuracy.json; the line joins the "

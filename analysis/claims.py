@@ -9,12 +9,19 @@ least half of its tested scenes are; otherwise it is confirmed when at least
 two thirds of the decided scenes agree, refuted when at most one third do,
 mixed in between. Output: claims.tex (a table: claim, test, scenes agreeing
 of those decided, scenes within noise, median ratio of the medians,
-verdict), claims_brief.tex (one line per claim, for the findings page) and
-macros with the counts.
+verdict), claims_brief.tex (one line per claim, for the findings page),
+claims_ratios.pdf (each claim's ratio per scene against the line where it
+changes side) and macros with the counts.
 """
 
 import statistics
 
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from analysis import figures  # noqa: E402
 from analysis import kdtree_results as kr
 from analysis import latex
 from analysis import provenance
@@ -194,6 +201,20 @@ CLAIMS = [
 ]
 
 
+# Where each claim's ratio (the test's last column) changes side, and on
+# which side the report is right ("below" or "above"), for the figure. A
+# claim with two conditions shows its ratio's; notmaxdepth's line moves with
+# D_max (1 - 1/24 at the depth cap of 24).
+THRESHOLDS = {
+    "depth": (1.0, "below"), "leafrefs": (1.0, "below"),
+    "emptyleaves": (1.0, "below"), "notmaxdepth": (1 - 1 / 24, "below"),
+    "drivingbuild": (1.0, "below"), "bins": (1.15, "below"),
+    "allaxes": (1.0, "below"), "binningalike": (1.25, "below"),
+    "clipnotbetter": (0.97, "above"), "manyclipped": (1.0, "above"),
+    "fewerpruned": (1.0, "below"), "drivingfastest": (1.0, "below"),
+    "clipbuildcost": (1.5, "below"), "clipfastest": (1.0, "below"),
+}
+
 # Each claim in a few words, for the findings page (claims_brief.tex).
 SHORT = {
     "depth": "depth 24 cuts triangle tests, adds node visits",
@@ -225,12 +246,15 @@ def verdict(agree, decided, noise):
     return "refuted" if agree * 3 <= decided else "mixed"
 
 
-def evaluate(df):
-    """[(claim, agree, decided, noise, median_ratio, verdict)]."""
+def evaluate(df, per_scene=None):
+    """[(claim, agree, decided, noise, median_ratio, verdict)]; with
+    per_scene (a dict), per_scene[claim id] = the scenes' ratios."""
     out = []
     for claim in CLAIMS:
         agree = decided = noise = 0
         ratios = []
+        if per_scene is not None:
+            per_scene[claim[0]] = ratios
         for scene in kr.scenes_in_order(df):
             try:
                 ok, ratio = claim[4](Scene(df, scene))
@@ -275,6 +299,33 @@ def render(results):
                           size="footnotesize")
 
 
+def figure(ctx, results, per_scene, filename="claims_ratios.pdf"):
+    """Each claim's ratio per scene (dots) and median (bar) on a log axis,
+    against the line where the claim changes side (red; the arrow points to
+    the side where the report is right)."""
+    with plt.rc_context(figures.STYLE):
+        fig, ax = plt.subplots(figsize=(6.3, 0.27 * len(results) + 0.8))
+        for y, (claim, _, _, _, median, verdict_) in enumerate(results):
+            ratios = [r for r in per_scene.get(claim[0], []) if r and r > 0]
+            ax.plot(ratios, [y] * len(ratios), "o", markersize=2.4, color="0.45", alpha=0.7)
+            if median:
+                ax.plot([median], [y], "|", markersize=9, color="black", markeredgewidth=1.3)
+            line, side = THRESHOLDS[claim[0]]
+            ax.plot([line], [y], "<" if side == "below" else ">", color="#c0392b", markersize=5)
+            ax.plot([line, line], [y - 0.35, y + 0.35], color="#c0392b", linewidth=1)
+        ax.set_yticks(range(len(results)))
+        ax.set_yticklabels(["%s: %s (%s)" % (c[1], SHORT[c[0]], v)
+                            for c, *_, v in results], fontsize=6.5)
+        ax.invert_yaxis()
+        ax.set_xscale("log")
+        ax.set_xlabel("the test's ratio per scene (log)")
+        ax.grid(axis="x", which="major", linewidth=0.4, alpha=0.5)
+        fig.tight_layout()
+        fig.savefig(ctx.path(filename))
+        plt.close(fig)
+    ctx.written.append(filename)
+
+
 def render_brief(results):
     """One line per claim for the findings page: where, the claim in a few
     words, the verdict, scenes agreeing of those decided."""
@@ -290,8 +341,10 @@ def render_brief(results):
 def generate(ctx):
     df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
     provenance.check_frame(ctx, df, "the claims table")
-    results = evaluate(df)
+    per_scene = {}
+    results = evaluate(df, per_scene)
     ctx.write("claims.tex", render(results))
+    figure(ctx, results, per_scene)
     ctx.write("claims_brief.tex", render_brief(results))
     counts = dict.fromkeys(VERDICTS, 0)
     for *_, verdict_ in results:

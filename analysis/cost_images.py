@@ -160,16 +160,16 @@ def draw(path, scene, images):
                 for side in ax.spines.values():
                     side.set_linewidth(0.4)
                 mean = means[(v, (kind, channel, label))]
-                ax.set_xlabel("mean %.1f" % mean if mean is not None else "", fontsize=5.5, labelpad=1)
+                ax.set_xlabel("mean %.1f" % mean if mean is not None else "", fontsize=6.5, labelpad=1)
                 if r == 0:
-                    ax.set_title(short_title(v), fontsize=6)
+                    ax.set_title(short_title(v), fontsize=7)
                 if c == 0:
-                    ax.set_ylabel(label, fontsize=6.5)
+                    ax.set_ylabel(label, fontsize=7)
             bar = fig.colorbar(im, cax=axes[r][-1], extend="max")
             bar.ax.yaxis.set_major_locator(ticker.LogLocator(subs=(1.0, 2.0, 5.0)))
             bar.ax.yaxis.set_major_formatter(ticker.FormatStrFormatter("%g"))
             bar.ax.yaxis.set_minor_locator(ticker.NullLocator())
-            bar.ax.tick_params(labelsize=5.5)
+            bar.ax.tick_params(labelsize=6.5)
         fig.subplots_adjust(left=0.05, right=0.95, top=1 - 0.3 / fig.get_figheight(),
                             bottom=0.16 / fig.get_figheight(), wspace=0.05, hspace=0.22)
         fig.savefig(path, dpi=200)
@@ -219,7 +219,7 @@ def generate(ctx):
         shown.append(scene)
         parts.append(
             "\\begin{landscape}\\begin{figure}[p]\\centering\n"
-            "\\includegraphics[width=\\linewidth]{generated/%s}\n"
+            "\\generatedfigure{%s}\n"
             "\\caption{%s}\\label{fig:cost-%s}\n\\end{figure}\\clearpage\\end{landscape}\n"
             % (name, caption(scene, len(images), scene_refused), scene))
     ctx.write("cost_images.tex", "".join(parts) if parts else

@@ -357,7 +357,7 @@ def generate(ctx):
     cost, costs, noise, differing, cpus, old = _cost_table(ctx, cost_records)
     ctx.write("robust_cost.tex", cost or (
         "\\emph{The robustness cost bench was not run (no paired records in "
-        "results/robust_cost.jsonl%s).}\n"
+        "results/robust\\_cost.jsonl%s).}\n"
         % ("; %d of the old unpaired format left out" % old if old else "")))
     if costs:
         median = "%s" % _signed_pct(1.0 + statistics.median(costs) / 100.0)

@@ -16,6 +16,9 @@ FITTABLE tab:embree font 8 natural 973.31702pt line 472.31
 595pt
 FITTABLE tab:wide font 11 natural 500pt line 500pt
 FITTABLE tab:rays font 9 natural 283.92401pt line 472.31595pt
+FITFIGURE fig1_build.pdf natural 453.6pt set 472.31595pt
+FITFIGURE cost/city.png natural 1353.6pt set 6
+76.8pt
 """
 
 
@@ -24,6 +27,10 @@ class TableScaleTest(unittest.TestCase):
         tables = table_scale.parse(LOG)
         self.assertEqual([t[0] for t in tables], ["tab:rays", "tab:embree", "tab:wide"])
         self.assertAlmostEqual(tables[1][3], 472.31595)
+
+    def test_figures_scale_is_set_over_natural_width(self):
+        self.assertEqual(table_scale.parse_figures(LOG),
+                         [("fig1_build.pdf", 472.31595 / 453.6), ("cost/city.png", 0.5)])
 
     def test_effective_size(self):
         # footnotesize in an 11 pt body, not shrunk: 9 / 11
@@ -41,6 +48,8 @@ class TableScaleTest(unittest.TestCase):
                 self.assertEqual(table_scale.main([f.name]), 0)
             self.assertIn("tab:embree", out.getvalue())
             self.assertIn("1 of 3 tables below 80 %", out.getvalue())  # 9 pt: 82 %
+            self.assertIn("figure cost/city.png", out.getvalue())
+            self.assertIn("1 of 2 figures below 80 %", out.getvalue())
             with redirect_stdout(io.StringIO()):
                 self.assertEqual(table_scale.main([f.name, "--strict", "--limit", "0.3"]), 0)
         finally:

@@ -114,8 +114,10 @@ mkdir -p report/build
 latexmk -pdf -cd -interaction=nonstopmode -halt-on-error \
   -output-directory=build report/main.tex
 cp report/build/main.pdf "$OUT/report.pdf"
-# The size each table is set at against the body font; those below 80 % are
-# listed (issue 25; not yet a failure).
-"$PY" -m analysis.table_scale report/build/main.log --body_pt 11 || true
+# Every table at 80 % of the body font or more, no figure shrunk below 80 %
+# (issue 25); a table or figure below is listed and the run says so, but the
+# PDF is kept (//analysis:report_pdf_test fails on it).
+"$PY" -m analysis.table_scale report/build/main.log --body_pt 11 --strict ||
+  echo "reproduce: a table or figure of the report is set below 80 % (listed above)" >&2
 echo
 echo "reproduce: report at $OUT/report.pdf ($(( $(date +%s) - START_S )) s in all)"
