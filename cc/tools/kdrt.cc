@@ -129,41 +129,32 @@ absl::Status WriteFile(const std::string& path, const std::function<absl::Status
   return write(path);
 }
 
-// The configuration's fields as the record shows them.
-Json ConfigJson(const Config& c) {
-  return {{"max_depth", c.max_depth},         {"max_leaf_size", c.max_leaf_size},
-          {"use_binning", c.use_binning},     {"use_driving_axis", c.use_driving_axis},
-          {"bins", c.bins},                   {"use_clipping", c.use_clipping},
-          {"use_pruning", c.use_pruning},     {"cast_shadow_rays", c.cast_shadow_rays},
-          {"seed_compatible", c.seed_compatible}};
-}
-
-absl::Status Run() {
-  const int repeats = absl::GetFlag(FLAGS_repeats), threads = absl::GetFlag(FLAGS_threads);
-  if (repeats < 1 || threads < 1) return absl::InvalidArgumentError("--repeats and --threads must be >= 1");
-  const double budget_s = absl::GetFlag(FLAGS_repeat_budget_s);
-  // Scene and mesh.
-  std::string scene = absl::GetFlag(FLAGS_scene), mesh = FromInvocationDir(absl::GetFlag(FLAGS_mesh));
-  View view;
-  std::string view_source;
-  if (!scene.empty() && mesh.empty()) {
-    absl::StatusOr<SceneRef> ref = ResolveScene(Workspace(), scene);
+// --scene and --mesh: the mesh to load, the scene's name (the mesh's stem
+// without --scene) and the manifest's view when it has one (view_source
+// "manifest"; else view_source stays empty).
+absl::Status ResolveSceneFlags(std::string* scene, std::string* mesh, View* view, std::string* view_source) {
+  if (!scene->empty() && mesh->empty()) {
+    absl::StatusOr<SceneRef> ref = ResolveScene(Workspace(), *scene);
     if (!ref.ok()) return ref.status();
-    mesh = ref->mesh_path;
+    *mesh = ref->mesh_path;
     if (ref->has_view) {
-      view = ref->view;
-      view_source = "manifest";
+      *view = ref->view;
+      *view_source = "manifest";
     }
-  } else if (!scene.empty()) {
-    absl::StatusOr<bool> has = LoadManifestView(Workspace(), scene, &view);
+  } else if (!scene->empty()) {
+    absl::StatusOr<bool> has = LoadManifestView(Workspace(), *scene, view);
     if (!has.ok()) return has.status();
-    if (*has) view_source = "manifest";
-  } else if (!mesh.empty()) {
-    scene = MeshStem(mesh);
+    if (*has) *view_source = "manifest";
+  } else if (!mesh->empty()) {
+    *scene = MeshStem(*mesh);
   } else {
     return absl::InvalidArgumentError("give --scene or --mesh");
   }
-  // Configuration.
+  return absl::OkStatus();
+}
+
+// The configuration flags, for kdrt_config.h's ResolveConfig.
+ConfigFlags ConfigFlagsFromCommandLine() {
   ConfigFlags cf;
   cf.preset = absl::GetFlag(FLAGS_preset);
   cf.env = FromInvocationDir(absl::GetFlag(FLAGS_env));
@@ -177,7 +168,26 @@ absl::Status Run() {
   cf.shadows = absl::GetFlag(FLAGS_shadows);
   cf.seed_compatible = absl::GetFlag(FLAGS_seed_compatible);
   cf.label = absl::GetFlag(FLAGS_label);
-  absl::StatusOr<ResolvedConfig> rc = ResolveConfig(cf);
+  return cf;
+}
+
+// Appends one line to the file at `path`.
+absl::Status AppendLine(const std::string& path, const std::string& line) {
+  FILE* f = std::fopen(path.c_str(), "a");
+  const bool written = f != nullptr && std::fprintf(f, "%s\n", line.c_str()) >= 0;
+  if (f != nullptr && std::fclose(f) == 0 && written) return absl::OkStatus();
+  return absl::InternalError(absl::StrCat(path, ": cannot append the record"));
+}
+
+absl::Status Run() {
+  const int repeats = absl::GetFlag(FLAGS_repeats), threads = absl::GetFlag(FLAGS_threads);
+  if (repeats < 1 || threads < 1) return absl::InvalidArgumentError("--repeats and --threads must be >= 1");
+  const double budget_s = absl::GetFlag(FLAGS_repeat_budget_s);
+  std::string scene = absl::GetFlag(FLAGS_scene), mesh = FromInvocationDir(absl::GetFlag(FLAGS_mesh));
+  View view;
+  std::string view_source;
+  if (absl::Status st = ResolveSceneFlags(&scene, &mesh, &view, &view_source); !st.ok()) return st;
+  absl::StatusOr<ResolvedConfig> rc = ResolveConfig(ConfigFlagsFromCommandLine());
   if (!rc.ok()) return rc.status();
   const std::string embree_flag = absl::GetFlag(FLAGS_embree);
   absl::StatusOr<EmbreeQuality> quality = ParseEmbreeQuality(embree_flag);
@@ -332,40 +342,11 @@ absl::Status Run() {
   rec["T_B_warmup"] = b.kd_warmup;
   AddRenderTimes(kl, pixels, &rec);
   rec["rays_total"] = r.total_rays();
-  rec["N_IT"] = counts.n_it();
-  rec["N_TR"] = counts.n_tr();
-  rec["traversal"] = {{"primary", TraversalJson(counts.by_kind[0])},
-                      {"shadow", TraversalJson(counts.by_kind[1])},
-                      {"ao", TraversalJson(counts.by_kind[2])}};
-  rec["counting_mismatches"] = counts.result_mismatches;
-  const Json tree_stats = StatsToJson(stats);
-  for (const auto& [key, value] : tree_stats.items()) rec[key] = value;
-  for (const auto& [key, value] : {std::pair<const char*, uint64_t>{"P_hit", r.p_hit}, {"P_miss", r.p_miss},
-                                   {"S_hit", r.s_hit}, {"S_miss", r.s_miss}, {"AO_hit", r.ao_hit},
-                                   {"AO_miss", r.ao_miss}}) {
-    rec[key] = value;
-  }
+  AddCountsAndStats(counts, stats, r, &rec);
   rec["effects"] = EffectsJson(kl);
   rec["image"] = png.empty() ? Json() : Json(png);
   rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
-  rec["embree"] = nullptr;
-  rec["disagreements"] = use_embree ? disagreements : Json();
-  rec["perf_ratio_kd_over_embree"] = nullptr;
-  rec["fast_render"] = nullptr;
-  if (fast) {
-    const Lane& fl = lanes[1];
-    rec["fast_render"] = {{"T_R", Median(fl.timed.t_r)}, {"T_R_runs", fl.timed.t_r},
-                          {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)}};
-  }
-  if (use_embree) {
-    rec["embree"] = EmbreeJson(*quality, b, disagreements, embree_timed ? &lanes.back() : nullptr, kl, pixels);
-    rec["perf_ratio_kd_over_embree"] = rec["embree"]["paired_ratio"];
-    if (fast && embree_timed) {
-      const std::vector<double> fp = PairedRatios(lanes.back().timed.t_r, lanes[1].timed.t_r);
-      rec["fast_render"]["paired_ratio_runs"] = fp;
-      rec["fast_render"]["paired_ratio"] = Median(fp);
-    }
-  }
+  AddComparisons(lanes, fast, use_embree ? &*quality : nullptr, embree_timed, b, disagreements, pixels, &rec);
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();
   rec["provenance"] = prov.ToJson();
@@ -374,12 +355,7 @@ absl::Status Run() {
   std::fflush(stdout);
   const std::string record_path = FromInvocationDir(absl::GetFlag(FLAGS_record));
   if (!record_path.empty() && !(st = WriteFile(record_path, [&](const std::string& p) {
-                                  FILE* f = std::fopen(p.c_str(), "a");
-                                  if (f != nullptr && std::fprintf(f, "%s\n", line.c_str()) >= 0 &&
-                                      std::fclose(f) == 0) {
-                                    return absl::OkStatus();
-                                  }
-                                  return absl::InternalError(absl::StrCat(p, ": cannot append the record"));
+                                  return AppendLine(p, line);
                                 })).ok()) {
     return st;
   }

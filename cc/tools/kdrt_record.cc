@@ -10,6 +10,14 @@ namespace kdtree {
 
 using Json = nlohmann::ordered_json;
 
+Json ConfigJson(const Config& c) {
+  return {{"max_depth", c.max_depth},         {"max_leaf_size", c.max_leaf_size},
+          {"use_binning", c.use_binning},     {"use_driving_axis", c.use_driving_axis},
+          {"bins", c.bins},                   {"use_clipping", c.use_clipping},
+          {"use_pruning", c.use_pruning},     {"cast_shadow_rays", c.cast_shadow_rays},
+          {"seed_compatible", c.seed_compatible}};
+}
+
 Json TraversalJson(const TraversalCounters& c) {
   const double n = c.rays ? static_cast<double>(c.rays) : 1.0;
   return {{"rays", c.rays}, {"N_IT", c.triangle_tests / n}, {"N_TR", c.inner_visits / n},
@@ -54,6 +62,45 @@ Json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b, const Json& disagre
   e["paired_ratio"] = el ? Json(Median(paired)) : Json();
   e["perf_ratio_kd_over_embree"] = e["paired_ratio"];
   return e;
+}
+
+void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const RenderResult& r, Json* rec) {
+  (*rec)["N_IT"] = counts.n_it();
+  (*rec)["N_TR"] = counts.n_tr();
+  (*rec)["traversal"] = {{"primary", TraversalJson(counts.by_kind[0])},
+                         {"shadow", TraversalJson(counts.by_kind[1])},
+                         {"ao", TraversalJson(counts.by_kind[2])}};
+  (*rec)["counting_mismatches"] = counts.result_mismatches;
+  const Json tree_stats = StatsToJson(stats);  // items() refers to it: not a temporary
+  for (const auto& [key, value] : tree_stats.items()) (*rec)[key] = value;
+  for (const auto& [key, value] : {std::pair<const char*, uint64_t>{"P_hit", r.p_hit}, {"P_miss", r.p_miss},
+                                   {"S_hit", r.s_hit}, {"S_miss", r.s_miss}, {"AO_hit", r.ao_hit},
+                                   {"AO_miss", r.ao_miss}}) {
+    (*rec)[key] = value;
+  }
+}
+
+void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality, bool embree_timed,
+                    const TimedBuilds& b, const Json& disagreements, double pixels, Json* rec) {
+  Json& out = *rec;
+  out["embree"] = nullptr;
+  out["disagreements"] = quality != nullptr ? disagreements : Json();
+  out["perf_ratio_kd_over_embree"] = nullptr;
+  out["fast_render"] = nullptr;
+  if (fast) {
+    const Lane& fl = lanes[1];
+    out["fast_render"] = {{"T_R", Median(fl.timed.t_r)}, {"T_R_runs", fl.timed.t_r},
+                          {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)}};
+  }
+  if (quality == nullptr) return;
+  out["embree"] = EmbreeJson(*quality, b, disagreements, embree_timed ? &lanes.back() : nullptr, lanes.front(),
+                             pixels);
+  out["perf_ratio_kd_over_embree"] = out["embree"]["paired_ratio"];
+  if (fast && embree_timed) {
+    const std::vector<double> fp = PairedRatios(lanes.back().timed.t_r, lanes[1].timed.t_r);
+    out["fast_render"]["paired_ratio_runs"] = fp;
+    out["fast_render"]["paired_ratio"] = Median(fp);
+  }
 }
 
 uint64_t Fnv64(const std::vector<uint8_t>& bytes) { return FnvBytes(bytes.data(), bytes.size()); }

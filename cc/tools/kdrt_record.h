@@ -1,6 +1,7 @@
 // Pieces of kdrt's record (cc/tools/kdrt_record.schema.json declares every
-// field): per-ray traversal counts, a timed lane's render figures, Embree's
-// object, and the image's hash.
+// field): the configuration, per-ray traversal counts and tree statistics, a
+// timed lane's render figures, the fast mode's and Embree's objects, and the
+// image's hash.
 #ifndef KDTREE_CC_TOOLS_KDRT_RECORD_H_
 #define KDTREE_CC_TOOLS_KDRT_RECORD_H_
 
@@ -8,12 +9,17 @@
 #include <vector>
 
 #include "cc/embree/embree_tracer.h"
+#include "cc/kdtree/config.h"
+#include "cc/kdtree/stats.h"
 #include "cc/render/traversal_counts.h"
 #include "cc/tools/timed_build.h"
 #include "cc/tools/timed_render.h"
 #include "nlohmann/json.hpp"
 
 namespace kdtree {
+
+// The configuration's fields as the record shows them.
+nlohmann::ordered_json ConfigJson(const Config& c);
 
 // {"rays", "N_IT", "N_TR", "leaves"}: the counters per ray.
 nlohmann::ordered_json TraversalJson(const TraversalCounters& c);
@@ -31,6 +37,20 @@ void AddRenderTimes(const Lane& lane, double pixels, nlohmann::ordered_json* j);
 nlohmann::ordered_json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b,
                                   const nlohmann::ordered_json& disagreements, const Lane* el,
                                   const Lane& kl, double pixels);
+
+// Adds, in the record's order, N_IT and N_TR (per ray, all kinds), the
+// counters per ray kind ("traversal"), counting_mismatches, the tree's
+// statistics (stats.h StatsToJson) and the render's hit counts.
+void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const RenderResult& r,
+                       nlohmann::ordered_json* rec);
+
+// Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
+// "fast_render": lanes are the timed lanes (the kd-tree's first, then the
+// fast mode's when `fast`, then Embree's when `embree_timed`); `quality` is
+// null without Embree.
+void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
+                    bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
+                    double pixels, nlohmann::ordered_json* rec);
 
 // FNV-1a 64 of the image's bytes (image_fnv64).
 uint64_t Fnv64(const std::vector<uint8_t>& bytes);
