@@ -2,7 +2,8 @@
 # README command 2: set-up (idempotent) and every test, C++ and Python.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash experiments/setup.sh --with-blender
+# LaTeX too: //analysis:report_pdf_test builds the report from a fixture.
+bash experiments/setup.sh --with-blender --with-report
 # Scenes the tests use when present (small ones; skipped with a message offline).
 /usr/bin/python3 data/fetch.py --profile test || echo "test scenes unavailable; tests fall back to generated meshes"
 # The Stanford bunny of the scene library joins the brute-force comparison
