@@ -269,43 +269,11 @@ Hit Dispatch(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
                                                                       nullptr);
 }
 
-TraversalOptions WithMode(IntersectionMode mode) {
-  TraversalOptions o;
-  o.mode = mode;
-  return o;
-}
-
 }  // namespace
 
-Hit Intersect(const KdTree& tree, const Ray& ray) {
-  return Dispatch<false>(tree, ray, nullptr, TraversalOptions());
-}
-Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters) {
-  return Dispatch<false>(tree, ray, counters, TraversalOptions());
-}
-Hit Intersect(const KdTree& tree, const Ray& ray, IntersectionMode mode) {
-  return Dispatch<false>(tree, ray, nullptr, WithMode(mode));
-}
-Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
-              IntersectionMode mode) {
-  return Dispatch<false>(tree, ray, counters, WithMode(mode));
-}
 Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
               TraversalCounters* counters) {
   return Dispatch<false>(tree, ray, counters, options);
-}
-bool Occluded(const KdTree& tree, const Ray& ray) {
-  return Dispatch<true>(tree, ray, nullptr, TraversalOptions()).hit();
-}
-bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters) {
-  return Dispatch<true>(tree, ray, counters, TraversalOptions()).hit();
-}
-bool Occluded(const KdTree& tree, const Ray& ray, IntersectionMode mode) {
-  return Dispatch<true>(tree, ray, nullptr, WithMode(mode)).hit();
-}
-bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
-              IntersectionMode mode) {
-  return Dispatch<true>(tree, ray, counters, WithMode(mode)).hit();
 }
 bool Occluded(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
               TraversalCounters* counters) {

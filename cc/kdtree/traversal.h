@@ -111,28 +111,21 @@ inline constexpr int kMailboxSlots = 8;
 // maxDepth at 60.
 inline constexpr int kMaxTraversalStack = 64;
 
-// Closest hit with ray.tmin < t <= ray.tmax (ties: smaller triangle index),
-// watertight test.
-Hit Intersect(const KdTree& tree, const Ray& ray);
-Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters);
-// The same with the test chosen; `counters` may be null.
-Hit Intersect(const KdTree& tree, const Ray& ray, IntersectionMode mode);
-Hit Intersect(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
-              IntersectionMode mode);
+// Options with only the triangle test chosen.
+inline TraversalOptions WithTest(IntersectionMode mode) {
+  TraversalOptions o;
+  o.mode = mode;
+  return o;
+}
 
-// True when any triangle is hit with ray.tmin < t <= ray.tmax (early exit),
-// watertight test.
-bool Occluded(const KdTree& tree, const Ray& ray);
-bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters);
-// The same with the test chosen; `counters` may be null.
-bool Occluded(const KdTree& tree, const Ray& ray, IntersectionMode mode);
-bool Occluded(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
-              IntersectionMode mode);
-
-// Closest hit / any hit with the options given; `counters` may be null.
-Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+// The two queries. Intersect: the closest hit with ray.tmin < t <= ray.tmax
+// (ties: the smaller triangle index). Occluded: whether any triangle is hit
+// with ray.tmin < t <= ray.tmax (early exit). Default options: the watertight
+// test, no mailbox, no origin triangle; `counters` (may be null) gathers
+// N_IT and N_TR.
+Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& options = TraversalOptions(),
               TraversalCounters* counters = nullptr);
-bool Occluded(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+bool Occluded(const KdTree& tree, const Ray& ray, const TraversalOptions& options = TraversalOptions(),
               TraversalCounters* counters = nullptr);
 
 // The ray's interval [*t0, *t1] inside box, clipped to [ray.tmin, ray.tmax];

@@ -163,8 +163,8 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
     ++rays;
     const Ray& ray = scene.rays[i];
     const Hit& want = reference[i];
-    const Hit got = mode == IntersectionMode::kWatertight ? Intersect(*tree, ray, &counters)
-                                                          : Intersect(*tree, ray, &counters, mode);
+    const Hit got = mode == IntersectionMode::kWatertight ? Intersect(*tree, ray, {}, &counters)
+                                                          : Intersect(*tree, ray, WithTest(mode), &counters);
     hits += want.hit();
     bool same = got.hit() == want.hit();
     if (same && want.hit() && got.tri != want.tri) {
@@ -174,7 +174,7 @@ TEST_P(VsBruteForce, EveryRayAgrees) {
       ADD_FAILURE() << "ray " << i << ": kd-tree tri " << got.tri << " t " << got.t
                     << ", brute force tri " << want.tri << " t " << want.t;
     }
-    if (Occluded(*tree, ray, mode) != want.hit() && ++any_mismatch <= 5) {
+    if (Occluded(*tree, ray, WithTest(mode)) != want.hit() && ++any_mismatch <= 5) {
       ADD_FAILURE() << "ray " << i << ": any-hit disagrees with brute-force closest hit";
     }
   }
@@ -217,10 +217,10 @@ TEST(Traversal, NanRayIsAMiss) {
                            Ray{{-inf, 0, 0}, {1, 0, 0}}, Ray{{-5, 0, 0}, {inf, 0, 0}},
                            Ray{{-5, 0, 0}, {0, 0, 0}}, Ray{{-5, 0, 0}, {1, 0, 0}, nan, inf},
                            Ray{{-5, 0, 0}, {1, 0, 0}, 0, nan}}) {
-      EXPECT_FALSE(Intersect(*tree, bad, mode).hit());
-      EXPECT_FALSE(Occluded(*tree, bad, mode));
+      EXPECT_FALSE(Intersect(*tree, bad, WithTest(mode)).hit());
+      EXPECT_FALSE(Occluded(*tree, bad, WithTest(mode)));
     }
-    EXPECT_TRUE(Intersect(*tree, Ray{{-5, 0, 0}, {1, 0, 0}}, mode).hit());
+    EXPECT_TRUE(Intersect(*tree, Ray{{-5, 0, 0}, {1, 0, 0}}, WithTest(mode)).hit());
   }
 }
 
@@ -257,7 +257,7 @@ TEST(Traversal, DefaultIsWatertight) {
         << ray.origin.y << " " << ray.origin.z << ", dir " << ray.dir.x << " " << ray.dir.y << " "
         << ray.dir.z;
     EXPECT_TRUE(Occluded(*tree, ray));
-    fast_misses += !Intersect(*tree, ray, IntersectionMode::kFast).hit();
+    fast_misses += !Intersect(*tree, ray, WithTest(IntersectionMode::kFast)).hit();
   }
   EXPECT_GT(fast_misses, 0) << "the fast test should miss some of these";
   std::printf("shared edges: fast mode misses %d of %zu rays, watertight 0\n", fast_misses,

@@ -10,11 +10,11 @@ RayCounts CountTraversal(const KdTree& tree, const std::vector<RayRecord>& recor
     TraversalCounters* c = &ray_counts;
     const Ray ray = rec.ray();
     if (rec.kind == RayKind::kPrimary) {
-      const Hit hit = Intersect(tree, ray, c);
+      const Hit hit = Intersect(tree, ray, {}, c);
       const bool same = hit.hit() == (rec.hit != 0) && (!hit.hit() || (hit.tri == rec.tri && hit.t == rec.t));
       counts.result_mismatches += !same;
     } else {
-      counts.result_mismatches += Occluded(tree, ray, c) != (rec.hit != 0);
+      counts.result_mismatches += Occluded(tree, ray, {}, c) != (rec.hit != 0);
     }
     counts.by_kind[static_cast<int>(rec.kind)].Add(ray_counts);
     if (per_pixel != nullptr) {

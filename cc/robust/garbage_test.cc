@@ -133,7 +133,7 @@ TEST(Garbage, DroppedCountedNeverHitNoNan) {
       ASSERT_TRUE(tree.ok()) << tree.status();
       size_t nan_hits = 0, nan_pixels = 0;
       for (size_t i = 0; i < rays.size(); ++i) {
-        const Hit h = Intersect(*tree, rays[i], mode);
+        const Hit h = Intersect(*tree, rays[i], WithTest(mode));
         if (!h.hit()) continue;
         nan_hits += !(std::isfinite(h.t) && std::isfinite(h.u) && std::isfinite(h.v));
         if (i < pixels) {
@@ -164,7 +164,7 @@ TEST(Garbage, KeptDegenerateTrianglesBuildAndAreReported) {
     ASSERT_TRUE(tree.ok()) << tree.status();
     size_t degenerate_hits = 0, nan_hits = 0;
     for (const Ray& ray : rays) {
-      const Hit h = Intersect(*tree, ray, mode);
+      const Hit h = Intersect(*tree, ray, WithTest(mode));
       if (!h.hit()) continue;
       degenerate_hits += degenerate[h.tri];
       nan_hits += !(std::isfinite(h.t) && std::isfinite(h.u) && std::isfinite(h.v));

@@ -89,9 +89,9 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
   options.mode = mode;
   ParallelFor(rays.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      const Hit got = Intersect(tree, rays[i], mode);
+      const Hit got = Intersect(tree, rays[i], WithTest(mode));
       bad[i] = !SameHit(got, reference[i]);
-      bad_any[i] = Occluded(tree, rays[i], mode) != reference[i].hit();
+      bad_any[i] = Occluded(tree, rays[i], WithTest(mode)) != reference[i].hit();
     }
     // The packet traversal (ray_packet.h) on consecutive rays, 4 at a time:
     // each lane must give the same answers.
@@ -135,14 +135,14 @@ void PrintExamples(const std::string& case_name, const std::string& preset, cons
                    const CheckResult& r) {
   for (size_t i : r.examples) {  // enough to replay a failure
     const Ray& ray = rays[i];
-    const Hit got = Intersect(tree, ray, r.mode), want = reference[i];
+    const Hit got = Intersect(tree, ray, WithTest(r.mode)), want = reference[i];
     std::printf("%s/%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a) "
                 "tmin %a tmax %a: kd-tree tri %d t %.9g (any-hit %d), brute force tri %d "
                 "t %.9g\n",
                 case_name.c_str(), preset.c_str(), IntersectionModeName(r.mode), i, ray.origin.x,
                 ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin, ray.tmax,
                 got.hit() ? static_cast<int>(got.tri) : -1, got.t,
-                Occluded(tree, ray, r.mode) ? 1 : 0, want.hit() ? static_cast<int>(want.tri) : -1,
+                Occluded(tree, ray, WithTest(r.mode)) ? 1 : 0, want.hit() ? static_cast<int>(want.tri) : -1,
                 want.t);
   }
 }

@@ -132,8 +132,8 @@ double TraceOnce(const KdTree& tree, const std::vector<Ray>& primary, const std:
   out->primary.resize(primary.size());
   out->shadow.resize(shadow.size());
   const auto start = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < primary.size(); ++i) out->primary[i] = Intersect(tree, primary[i], mode);
-  for (size_t i = 0; i < shadow.size(); ++i) out->shadow[i] = Occluded(tree, shadow[i], mode);
+  for (size_t i = 0; i < primary.size(); ++i) out->primary[i] = Intersect(tree, primary[i], WithTest(mode));
+  for (size_t i = 0; i < shadow.size(); ++i) out->shadow[i] = Occluded(tree, shadow[i], WithTest(mode));
   return Seconds(start);
 }
 

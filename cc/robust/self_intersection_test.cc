@@ -107,9 +107,9 @@ TEST(SelfIntersection, ShadowRaysAtEveryMagnitude) {
         from_origin.mode = mode;
         for (size_t i = 0; i < rays.size(); ++i) {
           const Origin& o = origins[i / 2];
-          const Hit h = Intersect(*tree, rays[i], mode);
+          const Hit h = Intersect(*tree, rays[i], WithTest(mode));
           self_hits += h.hit() && h.tri == o.tri;
-          any_vs_closest += Occluded(*tree, rays[i], mode) != h.hit();
+          any_vs_closest += Occluded(*tree, rays[i], WithTest(mode)) != h.hit();
           from_origin.origin_tri = o.tri;
           origin_skip += Occluded(*tree, rays[i], from_origin) != h.hit();
           lit_under_occluder += o.under_occluder && i % 2 == 0 && !h.hit();

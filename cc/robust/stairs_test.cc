@@ -113,7 +113,7 @@ TEST_P(Stairs, AxisRaysHitAtTheAnalyticDistance) {
       int wrong_hit = 0, wrong_t = 0;
       double max_rel = 0;
       for (size_t i = 0; i < rays.size(); ++i) {
-        const Hit h = Intersect(*tree, rays[i], mode);
+        const Hit h = Intersect(*tree, rays[i], WithTest(mode));
         if (h.hit() != expected[i].hit) {
           if (++wrong_hit <= 3 && mode == IntersectionMode::kWatertight) {
             ADD_FAILURE() << c.name << " " << name << " " << IntersectionModeName(mode) << " ray "

@@ -92,8 +92,8 @@ size_t TraversalFuzzCase(const uint8_t* data, size_t size) {
     for (IntersectionMode mode : {IntersectionMode::kWatertight, IntersectionMode::kFast}) {
       for (const Ray& ray : rays) {
         const Hit want = bf.Intersect(ray, mode);
-        bad += !Same(Intersect(*tree, ray, mode), want);
-        bad += Occluded(*tree, ray, mode) != want.hit();
+        bad += !Same(Intersect(*tree, ray, WithTest(mode)), want);
+        bad += Occluded(*tree, ray, WithTest(mode)) != want.hit();
       }
     }
   }
