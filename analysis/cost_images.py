@@ -13,8 +13,13 @@ equal the totals of the record of the same run (rays, N_TR and N_IT per ray
 kind): a file left by another run of other code is refused, and the caption
 says how many were.
 
-Output: cost_images.tex, cost/<scene>.png; macros CostImageFigures (the
-references), CostImageScenes, CostImagesRefused.
+The in-plane study (experiments/run_planar.py) runs the nine variants in the
+seed-compatible mode on its voxel world and writes their cost images to
+<results>/../costs/planar/<scene>_<variant>_seed.npy.gz: drawn as a second
+figure of that scene on the same colour scales.
+
+Output: cost_images.tex, cost/<scene>.png, cost/<scene>_seed.png; macros
+CostImageFigures (the references), CostImageScenes, CostImagesRefused.
 """
 
 import gzip
@@ -33,6 +38,7 @@ from analysis import kdtree_results as kr  # noqa: E402
 from analysis import latex  # noqa: E402
 
 FASTEST = "sah-packet"
+SEED_FILE = "planar.jsonl"  # experiments/run_planar.py: seed-mode runs
 SHOWN = kr.VARIANTS + [FASTEST]
 KINDS = ("primary", "shadow")  # kind index 0 and 1 of the file
 RAYS, INNER, TESTS = 0, 1, 2
@@ -133,10 +139,13 @@ def short_title(variant):
     return title + "\n"
 
 
-def draw(path, scene, images):
-    """images: {variant: counts}; one row per ROWS entry that has rays."""
+def draw(path, scene, images, like=None):
+    """images: {variant: counts}; one row per ROWS entry that has rays.
+    Returns (crop box, {row: colour scale}); `like`, such a pair from
+    another figure of the scene, makes this one use the same."""
     variants = [v for v in SHOWN if v in images]
-    y0, y1, x0, x1 = crop_box(images)
+    y0, y1, x0, x1 = like[0] if like else crop_box(images)
+    scales = {}
     means = {(v, r): mean_per_ray(images[v], r[0], r[1]) for v in variants for r in ROWS}
     images = {v: a[y0:y1, x0:x1] for v, a in images.items()}
     aspect = (y1 - y0) / max(1, x1 - x0)
@@ -150,7 +159,8 @@ def draw(path, scene, images):
                                  gridspec_kw={"width_ratios": [1] * len(variants) + [0.08]})
         for r, (kind, channel, label) in enumerate(rows):
             data = [per_ray(images[v], kind, channel) for v in variants]
-            norm = row_norm(data)
+            norm = like[1].get((kind, channel)) if like else None
+            norm = scales[(kind, channel)] = norm or row_norm(data)
             for c, (v, a) in enumerate(zip(variants, data)):
                 ax = axes[r][c]
                 shown = np.where(np.isfinite(a), np.maximum(a, norm.vmin), np.nan)
@@ -174,6 +184,7 @@ def draw(path, scene, images):
                             bottom=0.16 / fig.get_figheight(), wspace=0.05, hspace=0.22)
         fig.savefig(path, dpi=200)
         plt.close(fig)
+    return (y0, y1, x0, x1), scales
 
 
 def caption(scene, n_variants, refused):
@@ -186,9 +197,53 @@ def caption(scene, n_variants, refused):
         "percentile (brighter saturates). Counted by kdrt's counting pass on "
         "the very rays of the timed render; each image's sums equal its "
         "record's $N_{TR}$ and $N_{IT}$.%s"
-        % (latex.escape(scene), n_variants,
-           "" if not refused else " %d image(s) did not match their record "
-           "and are not shown." % refused))
+        % (latex.escape(scene), n_variants, _refused(refused)))
+
+
+def seed_caption(scene, n_variants, refused):
+    return (
+        "Cost images of %s in the seed-compatible mode (the report's own rules, "
+        "whose strict partition loses triangles lying in a split plane; "
+        "Section~\\ref{sec:errata}), %d of the nine variants, on the colour "
+        "scales of Figure~\\ref{fig:cost-%s}. From the runs of the in-plane "
+        "study (Table~\\ref{tab:planar}), checked against their records like "
+        "the others.%s" % (latex.escape(scene), n_variants, scene, _refused(refused)))
+
+
+def _refused(n):
+    return "" if not n else " %d image(s) did not match their record and are not shown." % n
+
+
+def collect(records, path_of):
+    """({variant: counts} of the images that match their record, how many
+    did not): records is {variant: record}, path_of(variant) the file."""
+    images, refused = {}, 0
+    for v in SHOWN:
+        rec, path = records.get(v), path_of(v)
+        if rec is None or not os.path.exists(path):
+            continue
+        counts = load(path)
+        if matches_record(counts, rec):
+            images[v] = counts
+        else:
+            refused += 1
+    return images, refused
+
+
+def seed_records(ctx, scene):
+    """{variant: the newest seed-mode record of the in-plane study}."""
+    out = {}
+    for rec in ctx.results(SEED_FILE):
+        if rec.get("ok") and rec.get("scene") == scene and rec.get("mode") == "seed":
+            out[rec["preset"]] = rec
+    return out
+
+
+def landscape(name, text, label):
+    return ("\\begin{landscape}\\begin{figure}[p]\\centering\n"
+            "\\generatedfigure{%s}\n"
+            "\\caption{%s}\\label{%s}\n\\end{figure}\\clearpage\\end{landscape}\n"
+            % (name, text, label))
 
 
 def generate(ctx):
@@ -199,29 +254,27 @@ def generate(ctx):
     os.makedirs(ctx.path("cost"), exist_ok=True)
     parts, shown, refused = [], [], 0
     for scene in order:
-        images, scene_refused = {}, 0
-        for v in SHOWN:
-            path = os.path.join(costs_dir, "%s_%s.npy.gz" % (scene, v))
-            rec = records.get((scene, v))
-            if rec is None or not os.path.exists(path):
-                continue
-            counts = load(path)
-            if matches_record(counts, rec):
-                images[v] = counts
-            else:
-                scene_refused += 1
-        refused += scene_refused
+        images, n_refused = collect(
+            {v: r for (sc, v), r in records.items() if sc == scene},
+            lambda v: os.path.join(costs_dir, "%s_%s.npy.gz" % (scene, v)))
+        refused += n_refused
         if not images:
             continue
         name = "cost/%s.png" % scene
-        draw(ctx.path(name), scene, images)
+        like = draw(ctx.path(name), scene, images)
         ctx.written.append(name)
         shown.append(scene)
-        parts.append(
-            "\\begin{landscape}\\begin{figure}[p]\\centering\n"
-            "\\generatedfigure{%s}\n"
-            "\\caption{%s}\\label{fig:cost-%s}\n\\end{figure}\\clearpage\\end{landscape}\n"
-            % (name, caption(scene, len(images), scene_refused), scene))
+        parts.append(landscape(name, caption(scene, len(images), n_refused), "fig:cost-%s" % scene))
+        seed, n_refused = collect(
+            seed_records(ctx, scene),
+            lambda v: os.path.join(costs_dir, "planar", "%s_%s_seed.npy.gz" % (scene, v)))
+        refused += n_refused
+        if seed:
+            name = "cost/%s_seed.png" % scene
+            draw(ctx.path(name), scene, seed, like)
+            ctx.written.append(name)
+            parts.append(landscape(name, seed_caption(scene, len(seed), n_refused),
+                                   "fig:cost-%s-seed" % scene))
     ctx.write("cost_images.tex", "".join(parts) if parts else
               "\\emph{No cost images (matrix.json's cost\\_image\\_scenes were "
               "not run, or their files did not match their records).}\n")

@@ -73,6 +73,38 @@ class CostImagesTest(unittest.TestCase):
             self.assertNotIn("fig:cost-city", tex)
             self.assertIn("2 variants", tex)
             self.assertTrue(os.path.exists(os.path.join(out, "cost", "bunny.png")))
+            self.assertNotIn("fig:cost-bunny-seed", tex)
+
+    def test_the_seed_mode_figure_from_the_in_plane_study(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            results = os.path.join(tmp, "out", "results")
+            costs = os.path.join(tmp, "out", "costs")
+            out = os.path.join(tmp, "gen")
+            for d in (results, os.path.join(costs, "planar"), out):
+                os.makedirs(d)
+            a = counts(40, 60, 7, 5)
+            seed = counts(40, 60, 9, 6)
+            with open(os.path.join(results, "kdtree.jsonl"), "w") as f:
+                f.write(json.dumps(record("lost-empire", "pruning", a)) + "\n")
+            with gzip.open(os.path.join(costs, "lost-empire_pruning.npy.gz"), "wb") as g:
+                np.save(g, a)
+            with open(os.path.join(results, "planar.jsonl"), "w") as f:
+                for mode in ("seed", "default"):
+                    rec = record("lost-empire", "pruning", seed)
+                    rec.update({"mode": mode, "label": "pruning_" + mode})
+                    f.write(json.dumps(rec) + "\n")
+            with gzip.open(os.path.join(costs, "planar", "lost-empire_pruning_seed.npy.gz"), "wb") as g:
+                np.save(g, seed)
+            manifest = os.path.join(tmp, "manifest.json")
+            with open(manifest, "w") as f:
+                json.dump({"scenes": [{"name": "lost-empire"}]}, f)
+            macros = cost_images.generate(context.Context(results, manifest, out))
+            self.assertEqual(macros["CostImagesRefused"][0], "0")
+            with open(os.path.join(out, "cost_images.tex")) as f:
+                tex = f.read()
+            self.assertLess(tex.index("fig:cost-lost-empire}"), tex.index("fig:cost-lost-empire-seed"))
+            self.assertIn("seed-compatible mode", tex)
+            self.assertTrue(os.path.exists(os.path.join(out, "cost", "lost-empire_seed.png")))
 
     def test_per_ray_averages_blocks_and_leaves_rayless_blocks_empty(self):
         a = counts(800, 800, 6, 10)

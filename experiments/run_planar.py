@@ -7,8 +7,9 @@ triangles that lie in a split plane) and in our default mode (loses none).
     /usr/bin/python3 experiments/run_planar.py --kdrt PATH [--scene lost-empire]
 
 Writes OUT/results/planar.jsonl (one kdrt record per variant and mode,
-append-only; a (scene, variant, mode) already recorded is not rerun) and the
-images to OUT/images/planar/<scene>_<variant>_<mode>.png.
+append-only; a (scene, variant, mode) already recorded is not rerun), the
+images to OUT/images/planar/<scene>_<variant>_<mode>.png and the seed mode's
+cost images to OUT/costs/planar/<scene>_<variant>_seed.npy.gz.
 """
 
 import argparse
@@ -57,6 +58,10 @@ def main(argv=None):
             cmd = [args.kdrt, "--scene", args.scene, "--preset", variant,
                    "--seed_compatible", flag, "--label", label,
                    "--repeats", "1", "--image", image]
+            if mode == "seed":
+                # The seed mode's cost images (analysis/cost_images.py).
+                cmd += ["--cost_image", os.path.join(
+                    args.out, "costs", "planar", "%s_%s.npy.gz" % (args.scene, label))]
             returncode, stderr, lines, _, _ = run_matrix.run_kdrt(cmd)
             if returncode != 0 or not lines:
                 failures += 1
