@@ -3,7 +3,8 @@
 Input : the manifest (what each scene is, where it comes from, how many
         triangles it should have) and results/scenes.jsonl (what scene_info
         actually loaded; written by experiments/run_scenes.py).
-Output: table1.tex, plus the macros the text quotes about the scenes.
+Output: table1.tex, table1_sources.tex (each scene's package or generator and
+licence, for the appendix), plus the macros the text quotes about the scenes.
 """
 
 from analysis import latex
@@ -100,7 +101,7 @@ def build_rows(manifest, records):
 
 def render(rows, seed):
     header = ["\\#", "Scene", "Stands in for", "Triangles",
-              "Expected", "Check", "Source", "Licence"]
+              "Expected", "Check", "From"]
     body, notes, failures = [], [], 0
     for row in rows:
         scene = row["scene"]
@@ -129,8 +130,7 @@ def render(rows, seed):
             loaded,
             latex.fmt_int(row["expected"]),
             check,
-            source_label(scene),
-            latex.escape(licence_label(scene.get("licence"))) or latex.DASH,
+            latex.escape(_KIND_LABELS.get(scene.get("kind") or "", scene.get("kind") or "")) or latex.DASH,
         ])
     if not body:
         return _render_empty()
@@ -142,12 +142,31 @@ def render(rows, seed):
         "\\emph{Triangles} is the count as loaded by \\texttt{scene\\_info} "
         "(after dropping degenerate and non-finite triangles); "
         "\\emph{Expected} comes from the manifest; \\emph{Check} is "
-        "\\checkmark{} when they agree, else the difference. \\emph{Licence} "
-        "stops before its first parenthesis; the manifest says where it is stated.")
-    wrap = ">{\\raggedright\\arraybackslash}p{%s}"  # source and licence wrap
-    return latex.booktabs(header, body, align="rllrrr" + wrap % "3.0cm" + wrap % "2.4cm",
+        "\\checkmark{} when they agree, else the difference. \\emph{From}: "
+        "a Debian or npm package, this project's generators, or Blender; "
+        "Table~\\ref{tab:sources} in the appendix names each package and "
+        "licence.")
+    return latex.booktabs(header, body, align="rllrrrl",
                           caption=caption, label="tab:scenes",
                           notes=notes or None, size="footnotesize")
+
+
+def render_sources(rows):
+    """The appendix's table of where each scene comes from and its licence
+    (Table 1 names only the kind of source)."""
+    body = [[str(row["number"]) if row["number"] is not None else latex.DASH,
+             latex.escape(row["name"]), source_label(row["scene"]),
+             latex.escape(licence_label(row["scene"].get("licence"))) or latex.DASH]
+            for row in rows]
+    if not body:
+        return ""
+    caption = ("Where each scene of Table~\\ref{tab:scenes} comes from, and its "
+               "licence (up to its first parenthesis; \\texttt{data/manifest.json} "
+               "says where the licence is stated).")
+    wrap = ">{\\raggedright\\arraybackslash}p{%s}"
+    return latex.booktabs(["\\#", "Scene", "Source", "Licence"], body,
+                          align="rl" + wrap % "6.2cm" + wrap % "5.2cm",
+                          caption=caption, label="tab:sources", size="footnotesize")
 
 
 def _render_empty():
@@ -191,4 +210,5 @@ def generate(ctx):
     seed = ctx.seed_table1
     rows = build_rows(ctx.manifest, records)
     ctx.write("table1.tex", render(rows, seed))
+    ctx.write("table1_sources.tex", render_sources(rows))
     return macros(rows, seed)
