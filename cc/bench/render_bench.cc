@@ -282,7 +282,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       for (const RayRecord& rec : recorded.rays) {
         if (rec.kind == RayKind::kPrimary) continue;
         const uint32_t origin = recorded.primary_hits[rec.pixel].tri;
-        differ += e.tracer->OccludedFrom(rec.ray(), origin) != (rec.hit != 0);
+        differ += e.tracer->Occluded(rec.ray(), origin) != (rec.hit != 0);
       }
       RenderOptions so = ropt;
       so.skip_origin = true;

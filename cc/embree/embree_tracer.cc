@@ -129,7 +129,7 @@ Hit EmbreeTracer::Intersect(const Ray& ray) const {
   return hit;
 }
 
-bool EmbreeTracer::Occluded(const Ray& ray) const {
+bool EmbreeTracer::Occluded(const Ray& ray, uint32_t /*origin_tri*/) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay r;
@@ -198,7 +198,8 @@ void EmbreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
   }
 }
 
-void EmbreeTracer::OccludedPacket(const Ray* rays, int n, bool* occluded) const {
+void EmbreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* /*origin_tris*/,
+                                  bool* occluded) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(16) int valid[4];

@@ -48,14 +48,17 @@ class EmbreeTracer : public Tracer {
   EmbreeTracer& operator=(const EmbreeTracer&) = delete;
 
   std::string name() const override { return "embree"; }
+  using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override;
-  bool Occluded(const Ray& ray) const override;
+  // Embree tests every triangle: origin_tri is not used.
+  bool Occluded(const Ray& ray, uint32_t origin_tri) const override;
   // rtcIntersect4 / rtcOccluded4 on the valid lanes (Embree's packet kernels,
   // or its emulation by single rays where the library has no native ray4);
   // IntersectPacket with the coherent flag (the renderer's packets are 2x2
   // camera rays), OccludedPacket without.
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
-  void OccludedPacket(const Ray* rays, int n, bool* occluded) const override;
+  void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                      bool* occluded) const override;
   // Whether the library traces ray4 packets natively
   // (RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED).
   bool native_ray4() const { return native_ray4_; }

@@ -101,7 +101,7 @@ TEST(EmbreeTracer, PacketsAgreeWithSingleRays) {
     Hit got[4];
     bool occ[4];
     (*embree)->IntersectPacket(&rays[k], n, got);
-    (*embree)->OccludedPacket(&rays[k], n, occ);
+    (*embree)->OccludedPacket(&rays[k], n, nullptr, occ);
     for (int i = 0; i < n; ++i) {
       const Hit want = (*embree)->Intersect(rays[k + i]);
       hits += want.hit();

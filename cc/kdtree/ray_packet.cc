@@ -293,13 +293,8 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
   if (p.live != 0) Trace<false>(tree, p, hits);
 }
 
-void OccludedPacket(const KdTree& tree, const Ray* rays, int n, bool* occluded,
-                    const TraversalOptions& options) {
-  OccludedPacketFrom(tree, rays, n, nullptr, occluded, options);
-}
-
-void OccludedPacketFrom(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
-                        bool* occluded, const TraversalOptions& options) {
+void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
+                    bool* occluded, const TraversalOptions& options) {
   assert(origin_tris == nullptr || options.origin_tri == kNoHit);
   Packet p;
   if (!PreparePacket(tree, rays, n, options, &p)) {

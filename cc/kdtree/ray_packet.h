@@ -36,16 +36,13 @@ inline constexpr int kRayPacketSize = 4;
 // hits[i] = Intersect(tree, rays[i], options) for i < n, 0 <= n <= 4.
 void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
                      const TraversalOptions& options = TraversalOptions());
-// occluded[i] = Occluded(tree, rays[i], options) for i < n, 0 <= n <= 4.
-void OccludedPacket(const KdTree& tree, const Ray* rays, int n, bool* occluded,
-                    const TraversalOptions& options = TraversalOptions());
-
-// occluded[i] = Occluded(tree, rays[i], options with origin_tri =
-// origin_tris[i]): each ray leaves its origin triangle untested
-// (TraversalOptions::origin_tri; the renderer's shadow and AO rays, cc/geometry/
-// spawn.h). options.origin_tri must be kNoHit.
-void OccludedPacketFrom(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
-                        bool* occluded, const TraversalOptions& options = TraversalOptions());
+// occluded[i] = Occluded(tree, rays[i], options) for i < n, 0 <= n <= 4;
+// with origin_tris (else null), ray i's options.origin_tri is origin_tris[i]:
+// each ray leaves its origin triangle untested (TraversalOptions::origin_tri;
+// the renderer's shadow and AO rays, cc/geometry/spawn.h), and
+// options.origin_tri must be kNoHit.
+void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
+                    bool* occluded, const TraversalOptions& options = TraversalOptions());
 
 // Whether IntersectPacket / OccludedPacket take the packet path for these rays
 // (else they trace them one by one). For tests and benchmarks.

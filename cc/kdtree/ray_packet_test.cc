@@ -5,7 +5,7 @@
 // with jittered directions, random rays forced to the same direction signs
 // (divergent lanes), axis-parallel rays with origins in split planes, and
 // packets with invalid rays or fewer than 4 rays. Shadow rays leaving their
-// origin triangles (OccludedPacketFrom) against the single-ray traversal told
+// origin triangles (OccludedPacket with origin_tris) against the single-ray traversal told
 // the same triangle, also when the "origin" is the triangle the ray hits.
 #include "cc/kdtree/ray_packet.h"
 
@@ -143,7 +143,7 @@ Counts Check(const TriangleSoup& soup, const KdTree& tree, const PacketSet& s) {
     Hit hits[kRayPacketSize];
     bool occ[kRayPacketSize];
     IntersectPacket(tree, rays, n, hits);
-    OccludedPacket(tree, rays, n, occ);
+    OccludedPacket(tree, rays, n, nullptr, occ);
     ++c.packets;
     c.packet_path += PacketPathApplies(tree, rays, n);
     for (int i = 0; i < n; ++i) {
@@ -242,7 +242,7 @@ TEST_P(PacketVsSingle, OriginTrianglesPerLane) {
       packet_path += PacketPathApplies(tree_, rays, kRayPacketSize);
       for (const uint32_t* tris : {origin, hit_tri}) {
         bool occ[kRayPacketSize];
-        OccludedPacketFrom(tree_, rays, kRayPacketSize, tris, occ);
+        OccludedPacket(tree_, rays, kRayPacketSize, tris, occ);
         for (int l = 0; l < kRayPacketSize; ++l) {
           TraversalOptions o;
           o.origin_tri = tris[l];
@@ -297,7 +297,7 @@ TEST(RayPacket, FallsBackWithoutLeafLayoutOrWithMixedSigns) {
       Hit hits[4];
       bool occ[4];
       IntersectPacket(*t, rays->data(), 4, hits);
-      OccludedPacket(*t, rays->data(), 4, occ);
+      OccludedPacket(*t, rays->data(), 4, nullptr, occ);
       for (int i = 0; i < 4; ++i) {
         EXPECT_TRUE(Bitwise(hits[i], Intersect(*t, (*rays)[i])));
         EXPECT_EQ(occ[i], Occluded(*t, (*rays)[i]));

@@ -30,7 +30,7 @@ class ExactTracer : public Tracer {
     }
     return best;
   }
-  bool Occluded(const Ray& ray) const override { return Intersect(ray).hit(); }
+  bool Occluded(const Ray& ray, uint32_t) const override { return Intersect(ray).hit(); }
 
  private:
   const TriangleSoup& soup_;
@@ -46,7 +46,7 @@ class MissesTriangleZero : public Tracer {
     for (uint32_t i = 1; i < soup_.size(); ++i) others.push_back(i);
     return BruteForce(soup_).Intersect(ray, others);
   }
-  bool Occluded(const Ray& ray) const override { return Intersect(ray).hit(); }
+  bool Occluded(const Ray& ray, uint32_t) const override { return Intersect(ray).hit(); }
 
  private:
   const TriangleSoup& soup_;
@@ -64,7 +64,7 @@ class ClaimsTriangleZero : public Tracer {
     h.t = t_;
     return h;
   }
-  bool Occluded(const Ray&) const override { return true; }
+  bool Occluded(const Ray&, uint32_t) const override { return true; }
 
  private:
   float t_;

@@ -11,10 +11,8 @@ Hit KdTreeTracer::Intersect(const Ray& ray) const {
   return ::kdtree::Intersect(tree_, ray, options_);
 }
 
-bool KdTreeTracer::Occluded(const Ray& ray) const {
-  return ::kdtree::Occluded(tree_, ray, options_);
-}
-bool KdTreeTracer::OccludedFrom(const Ray& ray, uint32_t origin_tri) const {
+bool KdTreeTracer::Occluded(const Ray& ray, uint32_t origin_tri) const {
+  if (origin_tri == kNoHit) return ::kdtree::Occluded(tree_, ray, options_);
   TraversalOptions o = options_;
   o.origin_tri = origin_tri;
   return ::kdtree::Occluded(tree_, ray, o);
@@ -24,13 +22,9 @@ void KdTreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
   ::kdtree::IntersectPacket(tree_, rays, n, hits, options_);
 }
 
-void KdTreeTracer::OccludedPacket(const Ray* rays, int n, bool* occluded) const {
-  ::kdtree::OccludedPacket(tree_, rays, n, occluded, options_);
-}
-
-void KdTreeTracer::OccludedPacketFrom(const Ray* rays, int n, const uint32_t* origin_tris,
-                                      bool* occluded) const {
-  ::kdtree::OccludedPacketFrom(tree_, rays, n, origin_tris, occluded, options_);
+void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                                  bool* occluded) const {
+  ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, options_);
 }
 
 }  // namespace kdtree

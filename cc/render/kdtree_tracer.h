@@ -20,14 +20,13 @@ class KdTreeTracer : public Tracer {
   KdTreeTracer(const KdTree& tree, const TraversalOptions& options)
       : tree_(tree), options_(options) {}
   std::string name() const override { return "kdtree"; }
+  using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override;
-  bool Occluded(const Ray& ray) const override;
-  bool OccludedFrom(const Ray& ray, uint32_t origin_tri) const override;
+  bool Occluded(const Ray& ray, uint32_t origin_tri) const override;
   // The kd-tree's packet traversal (cc/kdtree/ray_packet.h).
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
-  void OccludedPacket(const Ray* rays, int n, bool* occluded) const override;
-  void OccludedPacketFrom(const Ray* rays, int n, const uint32_t* origin_tris,
-                          bool* occluded) const override;
+  void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                      bool* occluded) const override;
 
  private:
   const KdTree& tree_;
@@ -39,8 +38,10 @@ class BruteForceTracer : public Tracer {
  public:
   explicit BruteForceTracer(const BruteForce& bf) : bf_(bf) {}
   std::string name() const override { return "brute_force"; }
+  using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override { return bf_.Intersect(ray); }
-  bool Occluded(const Ray& ray) const override { return bf_.Occluded(ray); }
+  // Tests every triangle, the origin one too.
+  bool Occluded(const Ray& ray, uint32_t) const override { return bf_.Occluded(ray); }
 
  private:
   const BruteForce& bf_;

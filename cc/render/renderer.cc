@@ -162,7 +162,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   // (RenderOptions::skip_origin: the tracer may leave that triangle untested).
   const bool skip_origin = options.skip_origin;
   const auto secondary_occluded = [&](const Ray& ray, const Hit& hit) {
-    return skip_origin ? tracer.OccludedFrom(ray, hit.tri) : tracer.Occluded(ray);
+    return tracer.Occluded(ray, skip_origin ? hit.tri : kNoHit);
   };
   const auto pixel_ray = [&](size_t p) {
     return camera.PrimaryRay(static_cast<int>(p % w), static_cast<int>(p / w));
@@ -242,11 +242,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
             Ray rays[kTracerPacket];
             bool occ[kTracerPacket];
             for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], view.lights[l].position);
-            if (skip_origin) {
-              tracer.OccludedPacketFrom(rays, n, origin, occ);
-            } else {
-              tracer.OccludedPacket(rays, n, occ);
-            }
+            tracer.OccludedPacket(rays, n, skip_origin ? origin : nullptr, occ);
             for (int i = 0; i < n; ++i) {
               occluded[lit[i] * n_lights + l] = occ[i];
               blocked += occ[i];

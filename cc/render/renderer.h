@@ -54,10 +54,10 @@ struct RenderOptions {
   // Embree's rtcIntersect4 / rtcOccluded4). AO rays stay single. Results,
   // hence the image, are the single-ray ones. Ignored when recording rays.
   bool packets = false;
-  // Beyond the report: shadow and AO rays go through Tracer::OccludedFrom with
-  // the primary hit's triangle, which the kd-tree then leaves untested (it can
-  // never hit it: TraversalOptions::origin_tri); with packets, the shadow
-  // rays go through Tracer::OccludedPacketFrom. Results, hence the image, are
+  // Beyond the report: shadow and AO rays tell Tracer::Occluded (and, with
+  // packets, Tracer::OccludedPacket) the primary hit's triangle, which the
+  // kd-tree then leaves untested (it can never hit it:
+  // TraversalOptions::origin_tri). Results, hence the image, are
   // unchanged. Off: every triangle met is tested, as the
   // counting pass (traversal_counts.h) counts them.
   bool skip_origin = false;

@@ -136,7 +136,7 @@ TEST(Renderer, TilesGiveTheSameImageAsOneThread) {
 // give the single-ray hits, occlusions and image, with the kd-tree's packet
 // traversal and with the Tracer default (brute force, one ray at a time),
 // also with shadow rays leaving their origin triangle untested
-// (Tracer::OccludedPacketFrom).
+// (Tracer::OccludedPacket with origin triangles).
 TEST(Renderer, PacketsGiveTheSingleRayImage) {
   View view = testing::SphereView(101, 71);
   view.ao.samples = 2;
@@ -203,7 +203,7 @@ TEST(Renderer, SkippingTheOriginTriangleChangesNoResult) {
     if (rec.kind == RayKind::kPrimary) continue;
     ++secondary;
     const uint32_t origin = a.primary_hits[rec.pixel].tri;
-    ASSERT_EQ(kd.OccludedFrom(rec.ray(), origin), bf.Occluded(rec.ray())) << rec.pixel;
+    ASSERT_EQ(kd.Occluded(rec.ray(), origin), bf.Occluded(rec.ray())) << rec.pixel;
   }
   EXPECT_GT(secondary, 1000u);
   EXPECT_GT(a.s_hit, 0u);

@@ -23,31 +23,23 @@ class Tracer {
   // several threads at once.
   virtual Hit Intersect(const Ray& ray) const = 0;
   // True when some triangle is hit with ray.tmin < t <= ray.tmax.
-  virtual bool Occluded(const Ray& ray) const = 0;
-  // Occluded for a ray spawned from triangle `origin_tri` (cc/geometry/
-  // spawn.h), which a tracer may leave untested when it can never hit it
-  // (the kd-tree's watertight test: TraversalOptions::origin_tri). The
-  // answer must be Occluded's. Default: Occluded.
-  virtual bool OccludedFrom(const Ray& ray, uint32_t origin_tri) const {
-    (void)origin_tri;
-    return Occluded(ray);
-  }
+  // `origin_tri`: the triangle the ray was spawned from (cc/geometry/
+  // spawn.h), or kNoHit; a tracer may leave it untested when it can never
+  // hit it (the kd-tree's watertight test: TraversalOptions::origin_tri),
+  // and the answer must be the same either way.
+  virtual bool Occluded(const Ray& ray, uint32_t origin_tri) const = 0;
+  bool Occluded(const Ray& ray) const { return Occluded(ray, kNoHit); }
 
   // The same queries for a packet of n <= kTracerPacket rays (the renderer's
-  // 2x2 pixel blocks, RenderOptions::packets). Each result must be what the
-  // single-ray query gives for that ray. Default: one ray at a time.
+  // 2x2 pixel blocks, RenderOptions::packets); origin_tris may be null (no
+  // ray has one). Each result must be what the single-ray query gives for
+  // that ray. Default: one ray at a time.
   virtual void IntersectPacket(const Ray* rays, int n, Hit* hits) const {
     for (int i = 0; i < n; ++i) hits[i] = Intersect(rays[i]);
   }
-  virtual void OccludedPacket(const Ray* rays, int n, bool* occluded) const {
-    for (int i = 0; i < n; ++i) occluded[i] = Occluded(rays[i]);
-  }
-  // OccludedFrom for a packet: ray i spawned from triangle origin_tris[i].
-  // Default: OccludedPacket.
-  virtual void OccludedPacketFrom(const Ray* rays, int n, const uint32_t* origin_tris,
-                                  bool* occluded) const {
-    (void)origin_tris;
-    OccludedPacket(rays, n, occluded);
+  virtual void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                              bool* occluded) const {
+    for (int i = 0; i < n; ++i) occluded[i] = Occluded(rays[i], origin_tris ? origin_tris[i] : kNoHit);
   }
 };
 

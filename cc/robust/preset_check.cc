@@ -100,7 +100,7 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
       Hit hits[kRayPacketSize];
       bool occluded[kRayPacketSize];
       IntersectPacket(tree, &rays[i], n, hits, options);
-      OccludedPacket(tree, &rays[i], n, occluded, options);
+      OccludedPacket(tree, &rays[i], n, nullptr, occluded, options);
       for (int l = 0; l < n; ++l) {
         bad[i + l] |= !SameHit(hits[l], reference[i + l]);
         bad_any[i + l] |= occluded[l] != reference[i + l].hit();
