@@ -22,7 +22,7 @@ import statistics
 from analysis import inputs
 from analysis import kdtree_results as kr
 
-MACROS = ["ReportClipBytesPerCL", "ReportClipBytesRows", "ReportClipShortMin",
+MACROS = ["ReportClipBytesPerCL", "ReportClipBytesRows", "ReportClipBytesTested", "ReportClipShortMin",
           "ReportClipShortMax", "ReportClipShortRows", "ReportClipPruneHolds",
           "ReportClipPruneRows", "OursClipRuns", "OursClipMaxExcess"]
 
@@ -85,6 +85,7 @@ def generate(ctx):
     return {
         "ReportClipBytesPerCL": ("%.1f" % statistics.median(per_cl) if per_cl else "--", False),
         "ReportClipBytesRows": (str(sum(abs(x - 56) < 0.5 for x in per_cl)), False),
+        "ReportClipBytesTested": (str(len(per_cl)), False),
         "ReportClipShortMin": pct(min(short)) if short else ("--", False),
         "ReportClipShortMax": pct(max(short)) if short else ("--", False),
         "ReportClipShortRows": (str(len(short)), False),

@@ -143,7 +143,8 @@ def render(rows, seed):
         "(after dropping degenerate and non-finite triangles); "
         "\\emph{Expected} comes from the manifest; \\emph{Check} is "
         "\\checkmark{} when they agree, else the difference. \\emph{From}: "
-        "a Debian or npm package, this project's generators, or Blender; "
+        "a Debian or npm package, this project's generators, Blender, or a "
+        "download; "
         "Table~\\ref{tab:sources} in the appendix names each package and "
         "licence.")
     return latex.booktabs(header, body, align="rllrrrl",

@@ -274,12 +274,13 @@ absl::Status Run() {
   const std::string cost_path = FromInvocationDir(absl::GetFlag(FLAGS_cost_image));
   CostImage cost(cost_path.empty() ? 0 : view.width, cost_path.empty() ? 0 : view.height);
   const RayCounts counts = CountTraversal(tree, recorded.rays, cost_path.empty() ? nullptr : &cost);
-  if (!cost_path.empty() && !(st = WriteFile(cost_path, [&](const std::string& p) {
-                                return WriteCostImageNpyGz(p, cost);
-                              })).ok()) {
-    return st;
-  }
   progress.Phase("counting pass");
+  if (!cost_path.empty()) {
+    if (!(st = WriteFile(cost_path, [&](const std::string& p) { return WriteCostImageNpyGz(p, cost); })).ok()) {
+      return st;
+    }
+    progress.Phase("cost image");
+  }
   Json disagreements;
   if (use_embree) {
     progress.Step("comparing with embree");
