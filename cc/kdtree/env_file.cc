@@ -6,44 +6,13 @@
 #include "absl/strings/ascii.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "cc/base/block_tokens.h"
 #include "cc/base/read_file.h"
 
 namespace kdtree {
 namespace {
 
-struct Token {
-  std::string text;
-  int line;
-};
-
-std::vector<Token> Tokenize(const std::string& text) {
-  std::vector<Token> out;
-  int line = 1;
-  size_t i = 0;
-  while (i < text.size()) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      ++i;
-    } else if (std::isspace(static_cast<unsigned char>(c))) {
-      ++i;
-    } else if (c == '#' || (c == '/' && i + 1 < text.size() && text[i + 1] == '/')) {
-      while (i < text.size() && text[i] != '\n') ++i;
-    } else if (c == '{' || c == '}') {
-      out.push_back({std::string(1, c), line});
-      ++i;
-    } else {
-      size_t j = i;
-      while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j])) &&
-             text[j] != '{' && text[j] != '}' && text[j] != '#') {
-        ++j;
-      }
-      out.push_back({text.substr(i, j - i), line});
-      i = j;
-    }
-  }
-  return out;
-}
+using Token = BlockToken;
 
 class Parser {
  public:
@@ -214,7 +183,7 @@ class Parser {
 
 absl::StatusOr<EnvResult> ParseEnvironment(const std::string& text, const std::string& filename,
                                            const Config& base) {
-  return Parser(Tokenize(text), filename, base).Parse();
+  return Parser(TokenizeBlocks(text), filename, base).Parse();
 }
 
 absl::StatusOr<EnvResult> LoadEnvironmentFile(const std::string& path, const Config& base) {

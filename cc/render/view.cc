@@ -7,50 +7,13 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "cc/base/block_tokens.h"
 #include "cc/base/read_file.h"
 
 namespace kdtree {
 namespace {
 
-struct Token {
-  std::string text;
-  int line;
-};
-
-std::vector<Token> Tokenize(const std::string& text) {
-  std::vector<Token> tokens;
-  int line = 1;
-  size_t i = 0;
-  std::string word;
-  int word_line = 1;
-  auto flush = [&]() {
-    if (!word.empty()) tokens.push_back({word, word_line});
-    word.clear();
-  };
-  while (i < text.size()) {
-    const char c = text[i];
-    if (c == '#' || (c == '/' && i + 1 < text.size() && text[i + 1] == '/')) {
-      flush();
-      while (i < text.size() && text[i] != '\n') ++i;
-      continue;
-    }
-    if (c == '\n') {
-      flush();
-      ++line;
-    } else if (c == ' ' || c == '\t' || c == '\r') {
-      flush();
-    } else if (c == '{' || c == '}') {
-      flush();
-      tokens.push_back({std::string(1, c), line});
-    } else {
-      if (word.empty()) word_line = line;
-      word += c;
-    }
-    ++i;
-  }
-  flush();
-  return tokens;
-}
+using Token = BlockToken;
 
 class ViewParser {
  public:
@@ -263,7 +226,7 @@ absl::Status View::Validate(const std::string& where) const {
 absl::StatusOr<View> ParseView(const std::string& text, const std::string& filename) {
   int lines = 1;
   for (char c : text) lines += c == '\n';
-  return ViewParser(Tokenize(text), filename, lines).Parse();
+  return ViewParser(TokenizeBlocks(text), filename, lines).Parse();
 }
 
 absl::StatusOr<View> LoadViewFile(const std::string& path) {
