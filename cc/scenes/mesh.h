@@ -15,6 +15,10 @@
 namespace kdtree {
 namespace scenes {
 
+// The most a scene tool reads of one input file (meshes, maps, tracks;
+// cc/base/read_file.h): 2 GiB, above every input of the full profile.
+inline constexpr size_t kSceneInputBudget = size_t{2} << 30;
+
 // 3x3 matrix (row-major) for the rotations and scales of instanced objects.
 struct Mat3 {
   float m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

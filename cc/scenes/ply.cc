@@ -4,13 +4,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "absl/strings/ascii.h"
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "cc/base/read_file.h"
 #include "absl/strings/str_split.h"
 
 namespace kdtree {
@@ -309,11 +309,9 @@ absl::StatusOr<Mesh> ParseObj(absl::string_view text) {
 }
 
 absl::StatusOr<Mesh> ReadMesh(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return absl::NotFoundError(absl::StrCat("cannot open: ", path));
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  const std::string bytes = buffer.str();
+  absl::StatusOr<std::string> read = ReadTextInput(path, "mesh", kSceneInputBudget);
+  if (!read.ok()) return read.status();
+  const std::string& bytes = *read;
   const std::string lower = absl::AsciiStrToLower(path);
   if (absl::EndsWith(lower, ".ply")) return ParsePly(bytes);
   if (absl::EndsWith(lower, ".obj")) return ParseObj(bytes);

@@ -6,12 +6,11 @@
 //
 // Prints one JSON line: triangles, vertices, faces, kept/skipped faces, bounds.
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "cc/base/read_file.h"
 #include "cc/base/json_line.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/ply.h"
@@ -32,14 +31,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "q3_bsp: --bsp and --out are required\n");
     return 2;
   }
-  std::ifstream file(in, std::ios::binary);
-  if (!file) {
-    std::fprintf(stderr, "q3_bsp: cannot open %s\n", in.c_str());
+  const absl::StatusOr<std::string> read = kdtree::ReadTextInput(in, "map", kdtree::scenes::kSceneInputBudget);
+  if (!read.ok()) {
+    std::fprintf(stderr, "q3_bsp: %s\n", std::string(read.status().message()).c_str());
     return 1;
   }
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  const std::string bytes = buffer.str();
+  const std::string& bytes = *read;
   kdtree::scenes::Q3BspConfig config;
   config.patch_subdivisions = absl::GetFlag(FLAGS_patch_subdivisions);
   config.skip_sky = absl::GetFlag(FLAGS_skip_sky);

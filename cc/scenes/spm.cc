@@ -3,12 +3,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <type_traits>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "cc/base/read_file.h"
 
 namespace kdtree {
 namespace scenes {
@@ -239,12 +238,9 @@ absl::StatusOr<Mesh> ParseSpm(absl::string_view bytes, absl::string_view name,
 }
 
 absl::StatusOr<Mesh> ReadSpm(const std::string& path, const SpmOptions& options, SpmInfo* info) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return absl::NotFoundError(absl::StrCat(path, ": cannot open"));
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  if (file.bad()) return absl::DataLossError(absl::StrCat(path, ": read failed"));
-  return ParseSpm(buffer.str(), path, options, info);
+  absl::StatusOr<std::string> bytes = ReadTextInput(path, "SPM mesh", kSceneInputBudget);
+  if (!bytes.ok()) return bytes.status();
+  return ParseSpm(*bytes, path, options, info);
 }
 
 #undef SPM_RETURN_IF_ERROR

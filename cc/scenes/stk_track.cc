@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <utility>
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "cc/base/read_file.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "cc/scenes/spm.h"
@@ -58,12 +57,7 @@ std::optional<bool> EvaluateCondition(const std::string& c, bool reverse) {
 }
 
 absl::StatusOr<std::string> ReadFile(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) return absl::NotFoundError(absl::StrCat(path, ": cannot open"));
-  std::ostringstream buffer;
-  buffer << file.rdbuf();
-  if (file.bad()) return absl::DataLossError(absl::StrCat(path, ": read failed"));
-  return buffer.str();
+  return ReadTextInput(path, "track file", kSceneInputBudget);
 }
 
 class TrackBuilder {
