@@ -1,0 +1,81 @@
+#!/usr/bin/python3
+"""Paired render timings of kdrt binaries: is a speed change outside the
+noise? (The README's "How the numbers are measured"; render_bench pairs
+tracers in one process, this pairs whole binaries.)
+
+    /usr/bin/python3 experiments/pair_binaries.py \
+        --binaries OLD,NEW,OLD_COPY --scenes bunny,city [--rounds 5] \
+        [--preset sah-packet] [--out pairs.jsonl]
+
+Each round runs every binary once per scene, one process at a time, the
+order rotated per round (kdrt --repeats 3 --fast_render --embree off, so a
+record holds T_R and the fast mode's T_R); round 0 is a warm-up and is
+dropped. Per scene and binary after the first, it prints the median over the
+rounds of (this binary's time / the first's in the same round) with the
+min..max, for T_R and the fast mode. Give a copy of the old binary as the
+last one: its ratios are the control, the noise a real change must clear.
+Every record goes to --out (one JSON line per run, with the image hash: the
+binaries must render the same image).
+"""
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+
+
+def ratios(times, reference):
+    """Per round, time / the reference's time in that round, for each of
+    T_R and the fast mode: [(t_r ratio, fast ratio)]."""
+    return [tuple(t[i] / r[i] for i in range(2)) for t, r in zip(times, reference)]
+
+
+def summary(pairs):
+    """(median, min, max) of each column of ratios()."""
+    return [(statistics.median(c), min(c), max(c)) for c in zip(*pairs)]
+
+
+def run(binary, scene, preset, cwd):
+    proc = subprocess.run([binary, "--scene", scene, "--preset", preset, "--repeats", "3",
+                           "--threads", "1", "--embree", "off", "--fast_render"],
+                          cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                          text=True, check=True)
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--binaries", required=True, help="comma-separated; the first is the reference")
+    p.add_argument("--scenes", required=True)
+    p.add_argument("--rounds", type=int, default=5, help="kept rounds (a warm-up round runs first)")
+    p.add_argument("--preset", default="sah-packet")
+    p.add_argument("--out", default="pair_binaries.jsonl")
+    p.add_argument("--cwd", default=".", help="where kdrt finds data/ (the repository root)")
+    args = p.parse_args(argv)
+    bins, scenes = args.binaries.split(","), args.scenes.split(",")
+    times = {(s, b): [] for s in scenes for b in bins}
+    images = {s: set() for s in scenes}
+    with open(args.out, "a", encoding="utf-8") as log:
+        for r in range(args.rounds + 1):
+            for s in scenes:
+                for b in bins[r % len(bins):] + bins[:r % len(bins)]:
+                    rec = run(b, s, args.preset, args.cwd)
+                    images[s].add(rec["image_fnv64"])
+                    log.write(json.dumps({"round": r, "scene": s, "binary": b, "T_R": rec["T_R"],
+                                          "fast": rec["fast_render"]["T_R"],
+                                          "image_fnv64": rec["image_fnv64"]}) + "\n")
+                    if r > 0:
+                        times[(s, b)].append((rec["T_R"], rec["fast_render"]["T_R"]))
+    for s in scenes:
+        for b in bins[1:]:
+            cols = summary(ratios(times[(s, b)], times[(s, bins[0])]))
+            print("%s %s %s" % (s, b, " | ".join(
+                "%s %.3f [%.3f..%.3f]" % (name, *c) for name, c in zip(("T_R", "fast"), cols))))
+        if len(images[s]) != 1:
+            print("%s: the binaries rendered %d different images" % (s, len(images[s])))
+    return 0 if all(len(v) == 1 for v in images.values()) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
