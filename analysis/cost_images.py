@@ -36,9 +36,9 @@ from matplotlib.colors import LogNorm  # noqa: E402
 from analysis import figures  # noqa: E402
 from analysis import kdtree_results as kr  # noqa: E402
 from analysis import latex  # noqa: E402
+from analysis import planar  # noqa: E402  (PLANAR_FILE: the seed-mode runs)
 
 FASTEST = "sah-packet"
-SEED_FILE = "planar.jsonl"  # experiments/run_planar.py: seed-mode runs
 SHOWN = kr.VARIANTS + [FASTEST]
 KINDS = ("primary", "shadow")  # kind index 0 and 1 of the file
 RAYS, INNER, TESTS = 0, 1, 2
@@ -234,7 +234,7 @@ def collect(records, path_of):
 def seed_records(ctx, scene):
     """{variant: the newest seed-mode record of the in-plane study}."""
     out = {}
-    for rec in ctx.results(SEED_FILE):
+    for rec in ctx.results(planar.PLANAR_FILE):
         if rec.get("ok") and rec.get("scene") == scene and rec.get("mode") == "seed":
             out[rec["preset"]] = rec
     return out

@@ -28,15 +28,7 @@ def counts(h, w, primary_inner, shadow_tests):
 
 
 def record(scene, variant, a):
-    rec = testdata.kdrt_record(scene, variant)
-    trav = {}
-    for k, kind in enumerate(("primary", "shadow", "ao")):
-        rays = int(a[:, :, k, 0].sum())
-        trav[kind] = {"rays": rays,
-                      "N_TR": a[:, :, k, 1].sum() / rays if rays else 0.0,
-                      "N_IT": a[:, :, k, 2].sum() / rays if rays else 0.0}
-    rec["traversal"] = trav
-    return rec
+    return testdata.kdrt_record(scene, variant, traversal=testdata.cost_traversal(a))
 
 
 class CostImagesTest(unittest.TestCase):

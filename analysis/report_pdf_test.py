@@ -46,11 +46,7 @@ def write_results(root):
                 over["fast_render"] = testdata.fast_render([0.9, 1.0, 1.1])
             if scene == "bunny":
                 a = cost_image()
-                over["traversal"] = {
-                    kind: {"rays": int(a[:, :, k, 0].sum()), "N_TR": 20.0 if k == 0 else 30.0,
-                           "N_IT": 10.0 if k == 0 else 8.0, "leaves": 1.0}
-                    for k, kind in enumerate(("primary", "shadow"))}
-                over["traversal"]["ao"] = {"rays": 0, "N_TR": 0.0, "N_IT": 0.0, "leaves": 0.0}
+                over["traversal"] = testdata.cost_traversal(a)
                 costs = os.path.join(root, "costs")
                 os.makedirs(costs, exist_ok=True)
                 with gzip.open(os.path.join(costs, "bunny_%s.npy.gz" % v), "wb") as f:

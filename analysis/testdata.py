@@ -118,6 +118,20 @@ def _traversal(rays):
     return {"rays": rays, "N_IT": 10.0, "N_TR": 20.0, "leaves": 3.0}
 
 
+def cost_traversal(counts):
+    """kdrt's "traversal" object that a cost image (a (height, width, 3, 3)
+    array of rays, inner visits, triangle tests per kind: cc/render/
+    cost_image.h) sums to, as the run that wrote it would record it."""
+    out = {}
+    for k, kind in enumerate(("primary", "shadow", "ao")):
+        rays = int(counts[:, :, k, 0].sum())
+        out[kind] = {"rays": rays,
+                     "N_IT": float(counts[:, :, k, 2].sum()) / rays if rays else 0.0,
+                     "N_TR": float(counts[:, :, k, 1].sum()) / rays if rays else 0.0,
+                     "leaves": 3.0}
+    return out
+
+
 def _effects(rays, seconds, rounds=1):
     def one(kind):
         t = seconds if kind != "ao" else 0.0

@@ -20,9 +20,12 @@ binaries must render the same image).
 
 import argparse
 import json
+import os
 import statistics
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import run_matrix  # noqa: E402  (run_kdrt: one kdrt process, its record)
 
 
 def ratios(times, reference):
@@ -36,12 +39,13 @@ def summary(pairs):
     return [(statistics.median(c), min(c), max(c)) for c in zip(*pairs)]
 
 
-def run(binary, scene, preset, cwd):
-    proc = subprocess.run([binary, "--scene", scene, "--preset", preset, "--repeats", "3",
-                           "--threads", "1", "--embree", "off", "--fast_render"],
-                          cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
-                          text=True, check=True)
-    return json.loads(proc.stdout.strip().splitlines()[-1])
+def run(binary, scene, preset):
+    returncode, stderr, records, _, cmd = run_matrix.run_kdrt(
+        [binary, "--scene", scene, "--preset", preset, "--repeats", "3", "--threads", "1",
+         "--embree", "off", "--fast_render"])
+    if returncode != 0 or not records:
+        raise RuntimeError("%s failed (%d): %s" % (" ".join(cmd), returncode, stderr[-500:]))
+    return records[-1]
 
 
 def main(argv=None):
@@ -51,7 +55,6 @@ def main(argv=None):
     p.add_argument("--rounds", type=int, default=5, help="kept rounds (a warm-up round runs first)")
     p.add_argument("--preset", default="sah-packet")
     p.add_argument("--out", default="pair_binaries.jsonl")
-    p.add_argument("--cwd", default=".", help="where kdrt finds data/ (the repository root)")
     args = p.parse_args(argv)
     bins, scenes = args.binaries.split(","), args.scenes.split(",")
     times = {(s, b): [] for s in scenes for b in bins}
@@ -60,7 +63,7 @@ def main(argv=None):
         for r in range(args.rounds + 1):
             for s in scenes:
                 for b in bins[r % len(bins):] + bins[:r % len(bins)]:
-                    rec = run(b, s, args.preset, args.cwd)
+                    rec = run(b, s, args.preset)
                     images[s].add(rec["image_fnv64"])
                     log.write(json.dumps({"round": r, "scene": s, "binary": b, "T_R": rec["T_R"],
                                           "fast": rec["fast_render"]["T_R"],
