@@ -190,7 +190,7 @@ def render_summary(records):
         paired = one.get("ratio_kd_over_embree", {}).get("kd", {}).get("paired")
         if paired is not None:
             paired_all.append(paired)
-        # Packets of 2x2 pixels on both sides (kd_packet over embree_packet).
+        # Packets of 4x4 pixels on both sides (kd_packet over embree_packet).
         packet = (one.get("ratio_kd_over_embree_packet") or {}).get("kd_packet", {}).get("paired")
         if packet is not None:
             packet_all.append(packet)
@@ -246,7 +246,7 @@ def render_summary(records):
                                  min(paired_all), max(paired_all),
                                  sum(p >= 0.7 for p in paired_all)))
     if packet_all:
-        out.append("Packets of 2x2 pixels, paired kd_packet/embree_packet over %d rows: median "
+        out.append("Packets of 4x4 pixels, paired kd_packet/embree_packet over %d rows: median "
                    "%.2f, range %.2f to %.2f." % (len(packet_all), statistics.median(packet_all),
                                                   min(packet_all), max(packet_all)))
     if origin_all:

@@ -19,6 +19,7 @@ PKGS=(
   zlib1g-dev             # zlib: gzip-compressed meshes (.ply.gz)
   libtbb-dev             # oneTBB: parallel rendering / building
   libembree-dev          # Embree 3: the speed to beat
+  libhwy-dev             # Google Highway: SIMD and run-time dispatch of the packet kernel
   nlohmann-json3-dev     # nlohmann-json: result records written and read as JSON
   python3 python3-pandas python3-numpy python3-matplotlib python3-pil python3-tqdm  # analysis, cost images
   pkg-config ca-certificates xz-utils

@@ -94,7 +94,7 @@ check([r["threads"] for r in render] == [1, 2], "one render record per thread co
 for r in render:
     for k in ["bench", "scene", "n_tri", "preset", "threads", "tile", "repeats", "rays", "primary",
               "shadow", "ao", "leaf_layout_bytes", "tracers", "ratio_kd_over_embree",
-              "ratio_kd_over_embree_packet", "embree_native_ray4", "validation", "timing",
+              "ratio_kd_over_embree_packet", "embree_native_ray16", "validation", "timing",
               "provenance"]:
         check(k in r, "render record has no " + k)
     check(r["bench"] == "render" and r["scene"] == "tiny" and r["n_tri"] == 10, "render: scene")

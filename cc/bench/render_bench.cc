@@ -42,12 +42,12 @@
 // Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
 // layout: vertices read by triangle index, the traversal before the layout),
 // "kd_mailbox" (leaf layout and mailboxing, traversal.h), "kd_packet" (kd's
-// tree, primary and shadow rays in packets of 2x2 pixels, RenderOptions::packets,
+// tree, primary and shadow rays in packets of 4x4 pixels, RenderOptions::packets,
 // cc/kdtree/ray_packet.h), "kd_origin" (kd, with shadow and AO rays leaving
 // their origin triangle untested, RenderOptions::skip_origin; validated on
 // every recorded secondary ray), "kd_packet_origin" (both: packets, and shadow
 // rays leaving their origin triangle untested); Embree likewise as "embree" (rtcIntersect1 /
-// rtcOccluded1) and "embree_packet" (rtcIntersect4 / rtcOccluded4), with
+// rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
 // ratios of every kd tracer to each. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
 // kd traversal in the same rounds: constants are tuned on the same rays and
@@ -108,7 +108,7 @@ ABSL_FLAG(std::string, envs, "",
           "a tree's constants on the same rays; its image must equal kd's).");
 ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
 ABSL_FLAG(bool, embree_packets, true,
-          "Also time Embree with packets of 2x2 pixels (rtcIntersect4 / rtcOccluded4) as "
+          "Also time Embree with packets of 4x4 pixels (rtcIntersect16 / rtcOccluded16) as "
           "tracer embree_packet, the bar for kd_packet.");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
 
@@ -407,7 +407,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"tracers", std::move(tracers)},
                 {"ratio_kd_over_embree", std::move(ratios)},
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},
-                {"embree_native_ray4", embree != nullptr && embree->native_ray4()}};
+                {"embree_native_ray16", embree != nullptr && embree->native_ray16()}};
     rec["validation"] = {{"variants_vs_kd_mismatches", variant_json},
                          {"brute_force_checked", checked},
                          {"brute_force_mismatches", bf_bad},

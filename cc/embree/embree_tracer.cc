@@ -62,7 +62,8 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Triangl
   }
   std::string error;
   rtcSetDeviceErrorFunction(t->device_, OnError, &error);
-  t->native_ray4_ = rtcGetDeviceProperty(t->device_, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) != 0;
+  t->native_ray16_ =
+      rtcGetDeviceProperty(t->device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
 
   t->scene_ = rtcNewScene(t->device_);
   rtcSetSceneBuildQuality(t->scene_, ToRtc(options.quality));
@@ -151,9 +152,10 @@ bool EmbreeTracer::Occluded(const Ray& ray, uint32_t /*origin_tri*/) const {
 
 namespace {
 
-// The rays of lanes i < n in a packet of 4; `valid` -1 for them, 0 for the rest.
-void FillRay4(const Ray* rays, int n, int* valid, RTCRay4* r) {
-  for (int i = 0; i < 4; ++i) {
+// The rays of lanes i < n in a packet of 16; `valid` -1 for them, 0 for the
+// rest.
+void FillRay16(const Ray* rays, int n, int* valid, RTCRay16* r) {
+  for (int i = 0; i < 16; ++i) {
     const Ray ray = i < n ? rays[i] : Ray{{0, 0, 0}, {1, 0, 0}};
     valid[i] = i < n ? -1 : 0;
     r->org_x[i] = ray.origin.x;
@@ -176,17 +178,17 @@ void FillRay4(const Ray* rays, int n, int* valid, RTCRay4* r) {
 void EmbreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  // The renderer's packets are 2x2 neighbouring camera rays: tell Embree
+  // The renderer's packets are 4x4 neighbouring camera rays: tell Embree
   // (its coherent hybrid traversal), the fair bar for our packets (#23).
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(16) int valid[4];
-  RTCRayHit4 rh;
-  FillRay4(rays, n, valid, &rh.ray);
-  for (int i = 0; i < 4; ++i) {
+  alignas(64) int valid[16];
+  alignas(64) RTCRayHit16 rh;
+  FillRay16(rays, n, valid, &rh.ray);
+  for (int i = 0; i < 16; ++i) {
     rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
   }
-  rtcIntersect4(valid, scene_, &ctx, &rh);
+  rtcIntersect16(valid, scene_, &ctx, &rh);
   for (int i = 0; i < n; ++i) {
     hits[i] = Hit();
     if (rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID) {
@@ -202,10 +204,10 @@ void EmbreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* /*orig
                                   bool* occluded) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  alignas(16) int valid[4];
-  RTCRay4 r;
-  FillRay4(rays, n, valid, &r);
-  rtcOccluded4(valid, scene_, &ctx, &r);
+  alignas(64) int valid[16];
+  alignas(64) RTCRay16 r;
+  FillRay16(rays, n, valid, &r);
+  rtcOccluded16(valid, scene_, &ctx, &r);
   for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] == -std::numeric_limits<float>::infinity();
 }
 

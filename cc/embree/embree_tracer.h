@@ -52,16 +52,16 @@ class EmbreeTracer : public Tracer {
   Hit Intersect(const Ray& ray) const override;
   // Embree tests every triangle: origin_tri is not used.
   bool Occluded(const Ray& ray, uint32_t origin_tri) const override;
-  // rtcIntersect4 / rtcOccluded4 on the valid lanes (Embree's packet kernels,
-  // or its emulation by single rays where the library has no native ray4);
-  // IntersectPacket with the coherent flag (the renderer's packets are 2x2
+  // rtcIntersect16 / rtcOccluded16 on the valid lanes (Embree's packet
+  // kernels, or its emulation where the library has no native ray16);
+  // IntersectPacket with the coherent flag (the renderer's packets are 4x4
   // camera rays), OccludedPacket without.
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override;
-  // Whether the library traces ray4 packets natively
-  // (RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED).
-  bool native_ray4() const { return native_ray4_; }
+  // Whether the library traces ray16 packets natively
+  // (RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED).
+  bool native_ray16() const { return native_ray16_; }
 
   // Wall time of rtcCommitScene.
   double build_seconds() const { return build_seconds_; }
@@ -71,7 +71,7 @@ class EmbreeTracer : public Tracer {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_seconds_ = 0;
-  bool native_ray4_ = false;
+  bool native_ray16_ = false;
 };
 
 }  // namespace kdtree

@@ -78,28 +78,30 @@ TEST(EmbreeTracer, AgreesWithBruteForceOnRandomRays) {
   EXPECT_LT(grazing_only, 10);
 }
 
-// Embree's packet queries against its single-ray ones, on packets of 2x2
-// camera rays and of 1 to 4 random rays. Its packet and single-ray kernels
+// Embree's packet queries against its single-ray ones, on packets of 4x4
+// camera rays and of 1 to 16 random rays. Its packet and single-ray kernels
 // are separate code, so a grazing ray may differ: allowed on a few rays only.
 TEST(EmbreeTracer, PacketsAgreeWithSingleRays) {
   const TriangleSoup soup = testing::BumpySphere(3, 9);
   absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, EmbreeOptions());
   ASSERT_TRUE(embree.ok()) << embree.status();
-  std::printf("native ray4: %d\n", (*embree)->native_ray4());
+  std::printf("native ray16: %d\n", (*embree)->native_ray16());
   const std::vector<Ray> cam = testing::CameraRays(soup, 64, 64);
   std::vector<Ray> rays;
-  for (int y = 0; y < 64; y += 2) {
-    for (int x = 0; x < 64; x += 2) {
-      for (int i : {0, 1, 64, 65}) rays.push_back(cam[y * 64 + x + i]);
+  for (int y = 0; y < 64; y += 4) {
+    for (int x = 0; x < 64; x += 4) {
+      for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) rays.push_back(cam[(y + j) * 64 + x + i]);
+      }
     }
   }
   const std::vector<Ray> random = testing::RandomRays(soup, 4000, 5);
   rays.insert(rays.end(), random.begin(), random.end());
   int hits = 0, differ = 0;
-  for (size_t k = 0; k < rays.size(); k += 4) {
-    const int n = k < cam.size() ? 4 : 1 + static_cast<int>(k / 4 % 4);
-    Hit got[4];
-    bool occ[4];
+  for (size_t k = 0; k < rays.size(); k += 16) {
+    const int n = k < cam.size() ? 16 : 1 + static_cast<int>(k / 16 % 16);
+    Hit got[16];
+    bool occ[16];
     (*embree)->IntersectPacket(&rays[k], n, got);
     (*embree)->OccludedPacket(&rays[k], n, nullptr, occ);
     for (int i = 0; i < n; ++i) {

@@ -1,5 +1,5 @@
-// Packets of up to 4 rays traced through the kd-tree together (SSE, one ray
-// per lane).
+// Packets of up to 16 rays traced through the kd-tree together, one ray per
+// vector lane (the renderer's 4x4 pixel blocks and their shadow rays).
 //
 // Wald, Slusallek, Benthin & Wagner, "Interactive rendering with coherent ray
 // tracing", CGF 20(3), 2001, and Wald's thesis ("Realtime Ray Tracing and
@@ -9,19 +9,27 @@
 // its own interval; at an inner node the packet goes to one child when every
 // active lane needs only that one, else it pushes the far child with the lanes
 // that need it and goes on to the near child with the lanes that need that.
-// Nodes, leaves and leaf packets are loaded once for the 4 rays.
+// Nodes, leaves and leaf triangles are loaded once for all lanes, and each
+// triangle is tested against all lanes at once.
+//
+// The packet's rays are traced in groups that share their direction signs and
+// their watertight axes (usually one group). The kernel is 4, 8 or 16 lanes
+// wide (SSE4, AVX2, AVX-512), chosen at run time for the CPU by Google
+// Highway's dynamic dispatch (ray_packet_kernel.cc); a group wider than a
+// vector runs as several vectors.
 //
 // Exactness: every lane applies the single-ray traversal's rules
 // (traversal.h), with the same float operations, to the same intervals, in
 // the same front-to-back order, and drops a popped node when its own best hit
 // rules it out. So each lane visits exactly the nodes the single-ray
-// traversal visits for its ray and tests the same triangles in the same order:
-// the results are bit for bit those of Intersect / Occluded (ray_packet_test.cc
-// checks this, and brute force, on random, coherent and adversarial packets).
+// traversal visits for its ray and tests the same triangles with the same
+// test: the results are bit for bit those of Intersect / Occluded
+// (ray_packet_test.cc checks this, and brute force, on random, coherent and
+// adversarial packets, on every kernel width the machine runs).
 //
 // Falls back to one ray at a time when the packet path does not apply: a tree
-// without the leaf layout (leaf_layout.h), the fast intersection mode,
-// mailboxing, or rays whose direction signs differ on some axis.
+// without the leaf layout (leaf_layout.h), the fast intersection mode or
+// mailboxing.
 #ifndef KDTREE_CC_KDTREE_RAY_PACKET_H_
 #define KDTREE_CC_KDTREE_RAY_PACKET_H_
 
@@ -31,12 +39,12 @@
 
 namespace kdtree {
 
-inline constexpr int kRayPacketSize = 4;
+inline constexpr int kRayPacketSize = 16;
 
-// hits[i] = Intersect(tree, rays[i], options) for i < n, 0 <= n <= 4.
+// hits[i] = Intersect(tree, rays[i], options) for i < n, 0 <= n <= kRayPacketSize.
 void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
                      const TraversalOptions& options = TraversalOptions());
-// occluded[i] = Occluded(tree, rays[i], options) for i < n, 0 <= n <= 4;
+// occluded[i] = Occluded(tree, rays[i], options) for i < n, 0 <= n <= kRayPacketSize;
 // with origin_tris (else null), ray i's options.origin_tri is origin_tris[i]:
 // each ray leaves its origin triangle untested (TraversalOptions::origin_tri;
 // the renderer's shadow and AO rays, cc/geometry/spawn.h), and
@@ -44,10 +52,13 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
                     bool* occluded, const TraversalOptions& options = TraversalOptions());
 
-// Whether IntersectPacket / OccludedPacket take the packet path for these rays
-// (else they trace them one by one). For tests and benchmarks.
-bool PacketPathApplies(const KdTree& tree, const Ray* rays, int n,
-                       const TraversalOptions& options = TraversalOptions());
+// Whether IntersectPacket / OccludedPacket take the packet path with this
+// tree and these options (else they trace the rays one by one).
+bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options = TraversalOptions());
+
+// The Highway target the packet kernel runs on ("AVX3", "AVX2", "SSE4", ...),
+// for records.
+const char* PacketKernelTarget();
 
 }  // namespace kdtree
 

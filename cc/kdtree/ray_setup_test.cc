@@ -1,13 +1,15 @@
 #include "cc/kdtree/ray_setup.h"
-#include "cc/kdtree/ray_setup4.h"
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <utility>
 
 #include "cc/geometry/ray_check.h"
+#include "cc/kdtree/packet_rays.h"
 #include "gtest/gtest.h"
+#include "hwy/targets.h"
 
 namespace kdtree {
 namespace {
@@ -96,57 +98,78 @@ TEST(RaySetup, SimdEqualsScalarBitForBit) {
   EXPECT_GT(simd, 200000);
 }
 
-// SetUpRays4's lane i against SetUpRay on ray i: the same answer, and every
-// field bit for bit where the ray reaches the box.
-TEST(RaySetup, FourLanesEqualOneRayBitForBit) {
+// The packet kernel's vector set-up (packet_internal::SetUpLanes, 16 lanes at
+// every kernel width the machine runs) against SetUpRay on each ray: the same
+// answer, and every field bit for bit where the ray reaches the box (the
+// watertight axes rebuilt from the lane's key).
+TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
+  constexpr int kLanes = packet_internal::kLanes;
   std::mt19937 rng(20261202);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  int groups = 0, hits = 0;
-  for (int g = 0; g < 100000; ++g) {
-    AABB box;
-    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-    if (g % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
-    Ray rays[4];
-    bool ok = true;
-    for (int i = 0; i < 4 && ok; ++i) {
-      Ray& ray = rays[i];
-      ray.origin = g % 3 == 0 ? Vec3(unit(rng), unit(rng), unit(rng)) * 2.0f
-                              : Vec3(Wild(rng), Wild(rng), Wild(rng));
-      ray.dir = g % 5 == 0 ? Vec3(unit(rng), unit(rng), unit(rng))
-                           : Vec3(Wild(rng), Wild(rng), Wild(rng));
-      ray.tmin = (g + i) % 4 == 0 ? -1.0f : 0.0f;
-      ray.tmax = (g + i) % 6 == 0 ? 3.0f : INFINITY;
-      ok = SanitizeRay(&ray) && ray.dir.x != 0 && ray.dir.y != 0 && ray.dir.z != 0;
-    }
-    if (!ok) continue;
-    ++groups;
-    RaySetup4 four;
-    const int live = SetUpRays4(rays, box, &four);
-    for (int i = 0; i < 4; ++i) {
-      RaySetup one;
-      ASSERT_EQ(SetUpRay(rays[i], box, &one), (live >> i & 1) != 0) << g;
-      if (!(live >> i & 1)) continue;
-      ++hits;
-      RaySetup lane;
-      for (int k = 0; k < 3; ++k) {
-        lane.org[k] = four.org[k][i];
-        lane.inv[k] = four.inv[k][i];
-        lane.tol[k] = four.tol[k][i];
-        lane.negative[k] = four.negative[i][k];
+  int groups = 0, hits = 0, targets = 0;
+  for (const int64_t target : packet_internal::KernelTargets()) {
+    hwy::SetSupportedTargetsForTest(target);
+    ++targets;
+    for (int g = 0; g < 8000; ++g) {
+      AABB box;
+      box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+      box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+      if (g % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+      Ray rays[kLanes];
+      packet_internal::PacketRays p;
+      bool ok = true;
+      for (int i = 0; i < kLanes && ok; ++i) {
+        Ray& ray = rays[i];
+        ray.origin = g % 3 == 0 ? Vec3(unit(rng), unit(rng), unit(rng)) * 2.0f
+                                : Vec3(Wild(rng), Wild(rng), Wild(rng));
+        ray.dir = g % 5 == 0 ? Vec3(unit(rng), unit(rng), unit(rng))
+                             : Vec3(Wild(rng), Wild(rng), Wild(rng));
+        ray.tmin = (g + i) % 4 == 0 ? -1.0f : 0.0f;
+        ray.tmax = (g + i) % 6 == 0 ? 3.0f : INFINITY;
+        ok = SanitizeRay(&ray) && ray.dir.x != 0 && ray.dir.y != 0 && ray.dir.z != 0;
+        for (int k = 0; k < 3; ++k) {
+          p.org[k][i] = ray.origin[k];
+          p.dir[k][i] = ray.dir[k];
+        }
+        p.tmin[i] = ray.tmin;
+        p.tmax[i] = ray.tmax;
+        p.ray[i] = ray;
       }
-      lane.delta = four.delta[i];
-      lane.t_entry = four.t_entry[i];
-      lane.t_exit = four.t_exit[i];
-      lane.slack = four.slack[i];
-      lane.wray = four.wray[i];
-      ExpectSame(lane, one, g);
-      if (::testing::Test::HasFailure()) return;
+      if (!ok) continue;
+      ++groups;
+      const uint32_t live = packet_internal::SetUpLanes(box, &p);
+      for (int i = 0; i < kLanes; ++i) {
+        RaySetup one;
+        ASSERT_EQ(SetUpRay(rays[i], box, &one), (live >> i & 1) != 0) << g;
+        if (!(live >> i & 1)) continue;
+        ++hits;
+        RaySetup lane;
+        for (int k = 0; k < 3; ++k) {
+          lane.org[k] = p.org[k][i];
+          lane.inv[k] = p.inv[k][i];
+          lane.tol[k] = p.tol[k][i];
+          lane.negative[k] = (p.key[i] >> k) & 1;
+        }
+        lane.delta = p.delta[i];
+        lane.t_entry = p.t_entry[i];
+        lane.t_exit = p.t_exit[i];
+        lane.slack = p.slack[i];
+        const int kz = p.key[i] >> 3;
+        int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
+        if (lane.negative[kz]) std::swap(kx, ky);
+        lane.wray = packet_internal::LaneRay(p, kx, ky, kz, i);
+        ExpectSame(lane, one, g);
+        const float weight = watertight_internal::ShearWeight(one.wray);
+        ASSERT_EQ(std::memcmp(&p.shear_weight[i], &weight, sizeof(float)), 0) << g;
+        if (::testing::Test::HasFailure()) return;
+      }
     }
   }
-  EXPECT_GT(groups, 20000);
+  hwy::SetSupportedTargetsForTest(0);
+  EXPECT_GE(targets, 2);
+  EXPECT_GT(groups, 1000 * targets);
   EXPECT_GT(hits, 10000);
-  EXPECT_LT(hits, 4 * groups - 10000);
+  EXPECT_LT(hits, kLanes * groups - 10000);
 }
 
 }  // namespace

@@ -98,12 +98,18 @@ uint64_t ForPixels(int w, int h, int threads, int tile, bool rows, const F& f) {
                   [&](int y, int, int x0, int x1) { return f(y, x0, x1); });
 }
 
-// The pixels of the 2x2 block at (x, y0) clipped to [x, x1) x [y0, y1), in
-// row-major order; returns how many (1 to 4).
+// Side of the renderer's square pixel blocks traced as one packet.
+constexpr int kBlock = 4;
+static_assert(kBlock * kBlock == kTracerPacket, "one block, one packet");
+
+// The pixels of the block at (x, y0) clipped to [x, x1) x [y0, y1), in
+// row-major order; returns how many (1 to kTracerPacket).
 int BlockPixels(int w, int y0, int y1, int x, int x1, size_t* pixels) {
   int n = 0;
   for (int y = y0; y < y1; ++y) {
-    for (int xx = x; xx < x + 2 && xx < x1; ++xx) pixels[n++] = static_cast<size_t>(y) * w + xx;
+    for (int xx = x; xx < x + kBlock && xx < x1; ++xx) {
+      pixels[n++] = static_cast<size_t>(y) * w + xx;
+    }
   }
   return n;
 }
@@ -156,7 +162,7 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   std::vector<std::vector<RayRecord>> rows(record ? h : 0);
   const Clock::time_point start = Clock::now();
 
-  // Packets of 2x2 pixels (RenderOptions::packets); never when recording.
+  // Packets of 4x4 pixels (RenderOptions::packets); never when recording.
   const bool packets = options.packets && !record;
   // A shadow or AO ray leaving the surface of primary hit `hit`
   // (RenderOptions::skip_origin: the tracer may leave that triangle untested).
@@ -171,9 +177,9 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   // 1. Primary rays.
   Clock::time_point t0 = Clock::now();
   if (packets) {
-    res.p_hit = ForBands(w, h, threads, tile, false, 2, [&](int y0, int y1, int x0, int x1) {
+    res.p_hit = ForBands(w, h, threads, tile, false, kBlock, [&](int y0, int y1, int x0, int x1) {
       uint64_t hits = 0;
-      for (int x = x0; x < x1; x += 2) {
+      for (int x = x0; x < x1; x += kBlock) {
         size_t pix[kTracerPacket];
         Ray rays[kTracerPacket];
         Hit out[kTracerPacket];
@@ -222,10 +228,10 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
   if (shadows) {
     t0 = Clock::now();
     if (packets) {
-      // Per 2x2 block and light, the shadow rays of the block's hits together.
-      res.s_hit = ForBands(w, h, threads, tile, false, 2, [&](int y0, int y1, int x0, int x1) {
+      // Per 4x4 block and light, the shadow rays of the block's hits together.
+      res.s_hit = ForBands(w, h, threads, tile, false, kBlock, [&](int y0, int y1, int x0, int x1) {
         uint64_t blocked = 0;
-        for (int x = x0; x < x1; x += 2) {
+        for (int x = x0; x < x1; x += kBlock) {
           size_t pix[kTracerPacket], lit[kTracerPacket];
           uint32_t origin[kTracerPacket];
           const int m = BlockPixels(w, y0, y1, x, x1, pix);

@@ -48,10 +48,10 @@ struct RenderOptions {
   int tile_size = 16;
   // RTCore.castShadowRays: shadow rays when the view has lights.
   bool cast_shadow_rays = true;
-  // Trace primary and shadow rays in packets of 2x2 pixels (per light, the
+  // Trace primary and shadow rays in packets of 4x4 pixels (per light, the
   // block's shadow rays together) through Tracer::IntersectPacket and
   // OccludedPacket (the kd-tree's packet traversal, cc/kdtree/ray_packet.h;
-  // Embree's rtcIntersect4 / rtcOccluded4). AO rays stay single. Results,
+  // Embree's rtcIntersect16 / rtcOccluded16). AO rays stay single. Results,
   // hence the image, are the single-ray ones. Ignored when recording rays.
   bool packets = false;
   // Beyond the report: shadow and AO rays tell Tracer::Occluded (and, with

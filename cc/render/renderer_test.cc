@@ -132,7 +132,7 @@ TEST(Renderer, TilesGiveTheSameImageAsOneThread) {
   EXPECT_GT(a.s_hit, 0u);
 }
 
-// Packets of 2x2 pixels (odd image sides and tiles: blocks of 1 to 4 rays)
+// Packets of 4x4 pixels (odd image sides and tiles: blocks of 1 to 16 rays)
 // give the single-ray hits, occlusions and image, with the kd-tree's packet
 // traversal and with the Tracer default (brute force, one ray at a time),
 // also with shadow rays leaving their origin triangle untested

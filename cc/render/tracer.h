@@ -10,7 +10,7 @@
 
 namespace kdtree {
 
-inline constexpr int kTracerPacket = 4;
+inline constexpr int kTracerPacket = 16;
 
 class Tracer {
  public:
@@ -31,7 +31,7 @@ class Tracer {
   bool Occluded(const Ray& ray) const { return Occluded(ray, kNoHit); }
 
   // The same queries for a packet of n <= kTracerPacket rays (the renderer's
-  // 2x2 pixel blocks, RenderOptions::packets); origin_tris may be null (no
+  // 4x4 pixel blocks, RenderOptions::packets); origin_tris may be null (no
   // ray has one). Each result must be what the single-ray query gives for
   // that ray. Default: one ray at a time.
   virtual void IntersectPacket(const Ray* rays, int n, Hit* hits) const {

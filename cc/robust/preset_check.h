@@ -73,7 +73,8 @@ std::vector<Hit> BruteForceHits(const TriangleSoup& soup, const std::vector<Ray>
                                 IntersectionMode mode);
 
 // One tree against a precomputed reference: the single-ray queries, and the
-// packet traversal (cc/kdtree/ray_packet.h) on consecutive groups of 4 rays;
+// packet traversal (cc/kdtree/ray_packet.h) on consecutive groups of
+// kRayPacketSize (16) rays;
 // a ray mismatches when either differs.
 CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
                       const std::vector<Hit>& reference, IntersectionMode mode);

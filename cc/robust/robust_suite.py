@@ -423,7 +423,7 @@ def main(argv=None, identity=None):
                         help="how the binaries were built (default: from "
                         "--bin_dir's bazel-out path)")
     parser.add_argument("--ray_stride", type=int, default=1,
-                        help="check every k-th packet of 4 rays of each "
+                        help="check every k-th packet of 16 rays of each "
                         "case (quick reproductions; default: every ray)")
     parser.add_argument("--skip_suite", action="store_true")
     parser.add_argument("--print_targets", action="store_true",

@@ -99,7 +99,7 @@ ABSL_FLAG(bool, embree_rounds, true,
           "With --embree: also time Embree's builds and renders in the rounds, paired with the "
           "kd-tree's (false: Embree is built once, untimed, only to compare every ray).");
 ABSL_FLAG(bool, fast_render, false,
-          "Also time the renderer's fastest mode (primary and shadow rays in packets of 2x2 "
+          "Also time the renderer's fastest mode (primary and shadow rays in packets of 4x4 "
           "pixels, shadow rays leaving their origin triangle untested): record field "
           "fast_render, held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
@@ -247,7 +247,7 @@ absl::Status Run() {
   RenderOptions ropt;
   ropt.threads = threads;
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
-  // The renders: the kd-tree, optionally its fastest mode (packets of 2x2
+  // The renders: the kd-tree, optionally its fastest mode (packets of 4x4
   // pixels, shadow rays leaving their origin triangle untested), optionally
   // Embree. Their warm-ups are the untimed passes every run makes anyway over
   // the frame's rays: the kd-tree's recording render (the rays and hits for

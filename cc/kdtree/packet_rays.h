@@ -1,0 +1,95 @@
+// A packet's rays after their set-up, as a structure of arrays the wide
+// kernel (ray_packet_kernel.cc) loads a vector of lanes at a time. Filled by
+// ray_packet.cc; internal to the packet traversal.
+#ifndef KDTREE_CC_KDTREE_PACKET_RAYS_H_
+#define KDTREE_CC_KDTREE_PACKET_RAYS_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "cc/geometry/ray.h"
+#include "cc/geometry/watertight.h"
+#include "cc/kdtree/tree.h"
+
+namespace kdtree {
+namespace packet_internal {
+
+inline constexpr int kLanes = 16;  // rays per packet (kRayPacketSize)
+
+// Per lane i, the values of RaySetup (ray_setup.h) and of the ray's
+// WatertightRay; lanes without a live ray hold a copy of a live one.
+struct PacketRays {
+  // The rays after SanitizeRay, by component.
+  alignas(64) float dir[3][kLanes];
+  alignas(64) float tmin[kLanes];
+  alignas(64) float tmax[kLanes];
+  alignas(64) float org[3][kLanes];
+  alignas(64) float inv[3][kLanes];
+  alignas(64) float tol[3][kLanes];
+  alignas(64) float t_entry[kLanes];
+  alignas(64) float t_exit[kLanes];
+  alignas(64) float slack[kLanes];
+  alignas(64) float delta[kLanes];
+  // The watertight frame's origin (ox, oy, oz), shear (sx, sy, sz) and the
+  // shear weight of its edge bound (watertight.h ShearWeight).
+  alignas(64) float ox[kLanes], oy[kLanes], oz[kLanes];
+  alignas(64) float sx[kLanes], sy[kLanes], sz[kLanes];
+  alignas(64) float shear_weight[kLanes];
+  // The triangle each ray leaves from, never tested (kNoHit: none).
+  alignas(64) uint32_t origin[kLanes];
+  Ray ray[kLanes];  // after SanitizeRay
+  uint8_t key[kLanes];  // direction signs and watertight axes (Group)
+  uint32_t live = 0;    // bit i: ray i reaches the tree
+  uint32_t behind = 0;  // bit i: ray i has tmin >= 0 (packet_reject.h)
+  bool has_origins = false;  // some lane has an origin triangle
+};
+
+// Lane i's WatertightRay (MakeWatertightRay's values), its axes g's.
+inline WatertightRay LaneRay(const PacketRays& p, int kx, int ky, int kz, int i) {
+  WatertightRay w;
+  w.kx = kx;
+  w.ky = ky;
+  w.kz = kz;
+  w.ox = p.ox[i];
+  w.oy = p.oy[i];
+  w.oz = p.oz[i];
+  w.sx = p.sx[i];
+  w.sy = p.sy[i];
+  w.sz = p.sz[i];
+  w.origin = p.ray[i].origin;
+  w.dir = p.ray[i].dir;
+  return w;
+}
+
+// The lanes that traverse together: the same direction sign on every axis
+// (so the same near child at every node) and the same watertight axes (so
+// the same vertex components are loaded for every lane).
+struct Group {
+  uint32_t lanes = 0;
+  bool negative[3] = {false, false, false};
+  int kx = 0, ky = 1, kz = 2;
+};
+
+// SetUpRay (ray_setup.h) for every lane from its ray's components (dir, org,
+// tmin, tmax; no direction component zero), with the same float operations:
+// fills the lanes' set-up and key; returns the lanes whose ray reaches the
+// box. Vector code, chosen at run time like TraceGroup.
+uint32_t SetUpLanes(const AABB& box, PacketRays* p);
+
+// Traces the group's lanes through tree (which has the leaf layout) and
+// writes best[i] for each (closest hit, or with any_hit the first hit found;
+// best[i].t must hold ray i's tmax on entry). Chosen at run time for the CPU
+// (Highway's dynamic dispatch: ray_packet_kernel.cc).
+void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best);
+
+// The Highway target TraceGroup runs on now ("AVX3", "AVX2", "SSE4", ...).
+const char* KernelTarget();
+
+// The Highway targets this machine can run the kernel on (for tests:
+// hwy::SetSupportedTargetsForTest(target) makes TraceGroup use one).
+std::vector<int64_t> KernelTargets();
+
+}  // namespace packet_internal
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_PACKET_RAYS_H_

@@ -1,0 +1,408 @@
+// The packet traversal's kernel, one ray per vector lane, compiled for every
+// x86 target Highway knows (SSE4: 4 lanes, AVX2: 8, AVX-512: 16, ...) and
+// chosen at run time for the CPU (Highway's dynamic dispatch: foreach_target.h
+// re-includes this file once per target).
+//
+// Wald, Slusallek, Benthin & Wagner, "Interactive rendering with coherent ray
+// tracing", CGF 20(3), 2001, and Wald's thesis (Saarland University, 2004,
+// section 7.2): rays with the same direction signs agree on the near child of
+// every node, so they descend together, each lane with its own interval. A
+// node, a leaf and a leaf's triangles are loaded once for all lanes, and a
+// triangle is tested against all lanes at once (the leaf loop is over
+// triangles, the vector over rays), which is what makes wide vectors pay.
+//
+// Exactness (ray_packet.h): every lane applies the single-ray traversal's rules
+// (traversal.h) with the same float operations to the same intervals, and
+// drops a popped node when its own best hit rules it out, so it visits the
+// nodes the single-ray traversal visits. The vector step per triangle is the
+// watertight test's common rejection (packet_reject.h, the same IEEE
+// operations in the same order), whose set lanes are certain misses; every
+// other lane gets the scalar IntersectTriangleWatertight itself.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "cc/kdtree/ray_packet_kernel.cc"
+// Every target the compiler can build, also under -march=native, so that the
+// tests run the 4- and 8-lane kernels on a machine with AVX-512.
+#ifndef HWY_COMPILE_ALL_ATTAINABLE
+#define HWY_COMPILE_ALL_ATTAINABLE
+#endif
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "cc/geometry/watertight.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/ray_setup.h"
+#include "cc/kdtree/traversal.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace kdtree {
+namespace packet_internal {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// The mask's lanes as bits (bit i: lane i).
+template <class D>
+HWY_INLINE uint32_t Bits(D d, hn::Mask<D> m) {
+  uint8_t bytes[8] = {0};
+  hn::StoreMaskBits(d, m, bytes);
+  uint32_t bits;
+  std::memcpy(&bits, bytes, sizeof(bits));
+  return bits;
+}
+
+template <class D>
+HWY_INLINE hn::Mask<D> FromBits(D d, uint32_t bits) {
+  uint8_t bytes[8] = {0};
+  std::memcpy(bytes, &bits, sizeof(bits));
+  return hn::LoadMaskBits(d, bytes);
+}
+
+template <class D>
+HWY_INLINE hn::Vec<D> MaxAbs3(const hn::Vec<D> v[3]) {
+  return hn::Max(hn::Max(hn::Abs(v[0]), hn::Abs(v[1])), hn::Abs(v[2]));
+}
+
+// The lanes' watertight frames, loaded once per chunk.
+template <class D>
+struct Frames {
+  hn::Vec<D> ox, oy, oz, sx, sy, sz, shear_weight;
+  Frames(D d, const PacketRays& p, size_t base)
+      : ox(hn::Load(d, p.ox + base)),
+        oy(hn::Load(d, p.oy + base)),
+        oz(hn::Load(d, p.oz + base)),
+        sx(hn::Load(d, p.sx + base)),
+        sy(hn::Load(d, p.sy + base)),
+        sz(hn::Load(d, p.sz + base)),
+        shear_weight(hn::Load(d, p.shear_weight + base)) {}
+};
+
+// The lanes (rays) that certainly miss triangle `l` of a leaf packet: the
+// watertight test's first step and edge bound (watertight.h, packet_reject.h)
+// with the triangle broadcast and the rays in the lanes.
+template <class D>
+HWY_INLINE uint32_t RejectRays(D d, const Frames<D>& f, const Group& g, const float* packet,
+                               int l, uint32_t behind) {
+  using V = hn::Vec<D>;
+  const V ox = f.ox, oy = f.oy, oz = f.oz, sx = f.sx, sy = f.sy;
+  V x[3], y[3], z[3];
+  for (int v = 0; v < 3; ++v) {
+    const float* q = packet + 3 * v * kPacketLanes + l;
+    z[v] = hn::Sub(hn::Set(d, q[g.kz * kPacketLanes]), oz);
+    x[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.kx * kPacketLanes]), ox), hn::Mul(sx, z[v]));
+    y[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.ky * kPacketLanes]), oy), hn::Mul(sy, z[v]));
+  }
+  const V e0 = hn::Sub(hn::Mul(x[2], y[1]), hn::Mul(y[2], x[1]));
+  const V e1 = hn::Sub(hn::Mul(x[0], y[2]), hn::Mul(y[0], x[2]));
+  const V e2 = hn::Sub(hn::Mul(x[1], y[0]), hn::Mul(y[1], x[0]));
+  const V lmax = hn::Max(MaxAbs3<D>(x), MaxAbs3<D>(y));
+  const V depth = hn::Mul(hn::Add(MaxAbs3<D>(z), hn::Set(d, watertight_internal::kEdgeBoundMinDepth)),
+                          f.shear_weight);
+  const V bound = hn::Add(hn::Mul(hn::Set(d, watertight_internal::kEdgeBoundRel),
+                                  hn::Mul(lmax, hn::Add(lmax, depth))),
+                          hn::Set(d, watertight_internal::kEdgeBoundAbs));
+  const V e_max = hn::Max(hn::Max(e0, e1), e2);
+  const V e_min = hn::Min(hn::Min(e0, e1), e2);
+  uint32_t reject = Bits(d, hn::And(hn::Gt(e_max, bound), hn::Lt(e_min, hn::Neg(bound))));
+  if (behind != 0) {
+    const V sz = f.sz, zero = hn::Zero(d);
+    const auto all_behind = hn::And(hn::And(hn::Lt(hn::Mul(sz, z[0]), zero),
+                                            hn::Lt(hn::Mul(sz, z[1]), zero)),
+                                    hn::Lt(hn::Mul(sz, z[2]), zero));
+    reject |= Bits(d, all_behind) & behind;
+  }
+  return reject;
+}
+
+struct Stack {
+  HWY_ALIGN float t_entry[kMaxTraversalStack][kLanes];
+  HWY_ALIGN float t_exit[kMaxTraversalStack][kLanes];
+  uint32_t node[kMaxTraversalStack];
+  uint32_t lanes[kMaxTraversalStack];
+};
+
+// The lanes of `lanes` the leaf's triangles are tested against; updates best
+// and best_t (closest hit) or `lanes` and *found (any hit: a lane with a hit
+// is done).
+template <bool kAnyHit, class D>
+HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
+                         const Group& g, size_t base, uint32_t first, uint32_t* lanes,
+                         uint32_t* found, float* best_t, Hit* best) {
+  const hn::RebindToUnsigned<D> du;
+  const bool origins = p.has_origins;
+  const uint32_t behind = p.behind >> base;
+  const float* packet = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
+  for (;;) {
+    uint32_t id[kPacketLanes];
+    std::memcpy(id, packet + kPacketIds, sizeof(id));
+    const bool last = (id[0] & kLastPacket) != 0;
+    id[0] &= ~kLastPacket;
+    for (int l = 0; l < kPacketLanes && *lanes != 0; ++l) {
+      if (id[l] == kPadLane) break;  // pads only follow a leaf's last triangle
+      uint32_t rays = *lanes & ~RejectRays(d, f, g, packet, l, behind & *lanes);
+      if (rays != 0 && origins) {
+        rays &= ~Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l])));
+      }
+      while (rays != 0) {
+        const int i = __builtin_ctz(rays);
+        rays &= rays - 1;
+        const size_t r = base + i;
+        const float* q = packet + l;
+        const Vec3 a(q[0 * 4], q[1 * 4], q[2 * 4]);
+        const Vec3 b(q[3 * 4], q[4 * 4], q[5 * 4]);
+        const Vec3 c(q[6 * 4], q[7 * 4], q[8 * 4]);
+        float t, u, v;
+        Hit& h = best[r];
+        const WatertightRay w = LaneRay(p, g.kx, g.ky, g.kz, static_cast<int>(r));
+        if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], h.t, &t, &u, &v) &&
+            (kAnyHit || Closer(t, id[l], h))) {
+          h.tri = id[l];
+          h.t = t;
+          h.u = u;
+          h.v = v;
+          *found |= 1u << i;
+          if (kAnyHit) {
+            *lanes &= ~(1u << i);
+          } else {
+            best_t[i] = t;
+          }
+        }
+      }
+    }
+    if (last || *lanes == 0) return;
+    packet += kPacketFloats;
+  }
+}
+
+// One vector of lanes, [base, base + Lanes(d)), of the group.
+template <bool kAnyHit, class D>
+HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const Group& g,
+                           size_t base, uint32_t lanes, Hit* best) {
+  using V = hn::Vec<D>;
+  V org[3], inv[3], tol[3];
+  for (int k = 0; k < 3; ++k) {
+    org[k] = hn::Load(d, p.org[k] + base);
+    inv[k] = hn::Load(d, p.inv[k] + base);
+    tol[k] = hn::Load(d, p.tol[k] + base);
+  }
+  V t_entry = hn::Load(d, p.t_entry + base), t_exit = hn::Load(d, p.t_exit + base);
+  const V slack = hn::Load(d, p.slack + base), inf = hn::Set(d, INFINITY);
+  const Frames<D> frames(d, p, base);
+  HWY_ALIGN float best_t[kLanes];
+  for (size_t i = 0; i < hn::Lanes(d); ++i) best_t[i] = best[base + i].t;
+  const KdNode* nodes = tree.leaf_nodes.data();
+  Stack stack;
+  int top = 0;
+  uint32_t found = 0, index = 0;
+  for (;;) {
+    const KdNode* node = &nodes[index];
+    while (!node->is_leaf()) {
+      const int axis = node->axis();
+      const V ts = hn::Mul(hn::Sub(hn::Set(d, node->split), org[axis]), inv[axis]);
+      const V t_tol = tol[axis];
+      const uint32_t left = index + 1, right = node->index();
+      const uint32_t near = g.negative[axis] ? right : left;
+      const uint32_t far = g.negative[axis] ? left : right;
+      // The single-ray rules (traversal.cc), per lane.
+      const uint32_t near_only = Bits(d, hn::Gt(ts, hn::Add(t_exit, t_tol))) & lanes;
+      const uint32_t far_only = Bits(d, hn::Lt(ts, hn::Sub(t_entry, t_tol))) & lanes & ~near_only;
+      if (far_only == lanes) {
+        index = far;
+      } else if (near_only == lanes) {
+        index = near;
+      } else {
+        uint32_t both = lanes & ~near_only & ~far_only;
+        uint32_t need_near = near_only | both, need_far = far_only | both;
+        const uint32_t finite = Bits(d, hn::Lt(hn::Abs(ts), inf));
+        if ((both & ~finite) != 0) {
+          // Parallel to the plane or in it: both children whole within delta
+          // of the plane, else the side the origin is on.
+          for (uint32_t m = both & ~finite; m != 0; m &= m - 1) {
+            const int i = __builtin_ctz(m);
+            const float gap = node->split - p.org[axis][base + i];
+            if (!(std::fabs(gap) <= p.delta[base + i])) {
+              const bool to_near = (gap > 0) == (near == left);
+              (to_near ? need_far : need_near) &= ~(1u << i);
+            }
+          }
+          both &= finite;
+        }
+        if (need_near == 0) {
+          index = far;
+          lanes = need_far;
+        } else if (need_far == 0) {
+          index = near;
+          lanes = need_near;
+        } else {
+          // Near on [t_entry, ts + tol], far on [ts - tol, t_exit], ts
+          // clamped to the interval, for the lanes in `both`.
+          const V tc = hn::Min(t_exit, hn::Max(t_entry, ts));
+          const auto clamp = FromBits(d, both);
+          hn::Store(hn::IfThenElse(clamp, hn::Sub(tc, t_tol), t_entry), d, stack.t_entry[top]);
+          hn::Store(t_exit, d, stack.t_exit[top]);
+          stack.node[top] = far;
+          stack.lanes[top++] = need_far;
+          t_exit = hn::IfThenElse(clamp, hn::Add(tc, t_tol), t_exit);
+          index = near;
+          lanes = need_near;
+        }
+      }
+      node = &nodes[index];
+    }
+    if (node->index() != kEmptyLeaf) {
+      TestLeaf<kAnyHit>(d, tree, p, frames, g, base, node->index(), &lanes, &found, best_t, best);
+    }
+    // Next node: each lane drops it when it starts beyond that lane's best
+    // hit plus slack (any hit: lanes with a hit are done).
+    for (;;) {
+      if (top == 0) return;
+      --top;
+      uint32_t m = stack.lanes[top] & ~(kAnyHit ? found : 0u);
+      if (!kAnyHit && (m & found) != 0) {
+        const V limit = hn::Add(hn::Load(d, best_t), slack);
+        m &= ~(Bits(d, hn::Gt(hn::Load(d, stack.t_entry[top]), limit)) & found);
+      }
+      if (m == 0) continue;
+      lanes = m;
+      index = stack.node[top];
+      t_entry = hn::Load(d, stack.t_entry[top]);
+      t_exit = hn::Load(d, stack.t_exit[top]);
+      break;
+    }
+  }
+}
+
+// SetUpRay's vector path (ray_setup.h) for the lanes [base, base + Lanes(d)),
+// operation for operation (MINPS / MAXPS operand order included), and
+// MakeWatertightRay's axes and shears; returns the lanes that reach the box.
+template <class D>
+HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p) {
+  using V = hn::Vec<D>;
+  const V one = hn::Set(d, 1.0f), pad = hn::Set(d, ray_setup::kPad);
+  V o[3], dir[3], dl[3], dh[3], inv[3], depth[3];
+  V reach = hn::Zero(d);
+  for (int k = 0; k < 3; ++k) {
+    o[k] = hn::Load(d, p->org[k] + base);
+    dir[k] = hn::Load(d, p->dir[k] + base);
+    dl[k] = hn::Sub(hn::Set(d, box.lo[k]), o[k]);
+    dh[k] = hn::Sub(hn::Set(d, box.hi[k]), o[k]);
+    inv[k] = hn::Div(one, dir[k]);
+    hn::Store(inv[k], d, p->inv[k] + base);
+    // reach = Max(reach, Max(|dl|, |dh|)), Max(a, b) = a > b ? a : b.
+    depth[k] = hn::Max(hn::Abs(dl[k]), hn::Abs(dh[k]));
+    reach = hn::Max(reach, depth[k]);
+  }
+  const V delta = hn::Mul(hn::Set(d, ray_setup::kSpatialTol), reach);
+  hn::Store(delta, d, p->delta + base);
+  V lo = hn::Load(d, p->tmin + base), hi = hn::Load(d, p->tmax + base);
+  for (int k = 0; k < 3; ++k) {
+    const V tol = hn::Mul(delta, hn::Abs(inv[k]));
+    hn::Store(tol, d, p->tol[k] + base);
+    const V tn = hn::Mul(dl[k], inv[k]), tf = hn::Mul(dh[k], inv[k]);
+    V t0 = hn::Min(tf, tn), t1 = hn::Max(tn, tf);
+    t0 = hn::Sub(t0, hn::Add(hn::Mul(hn::Abs(t0), pad), tol));
+    t1 = hn::Add(t1, hn::Add(hn::Mul(hn::Abs(t1), pad), tol));
+    lo = hn::Max(t0, lo);
+    hi = hn::Min(t1, hi);
+  }
+  hn::Store(lo, d, p->t_entry + base);
+  hn::Store(hi, d, p->t_exit + base);
+  // WatertightAxes: kz the largest |d| (ties to the lower axis), kx and ky
+  // the next two cyclically, swapped when d[kz] < 0.
+  const V ax = hn::Abs(dir[0]), ay = hn::Abs(dir[1]), az = hn::Abs(dir[2]);
+  const auto on_x = hn::And(hn::Ge(ax, ay), hn::Ge(ax, az));
+  const auto on_y = hn::AndNot(hn::Ge(ax, ay), hn::Ge(ay, az));
+  const auto pick = [&](const V v[3], int kx_of_x, int kx_of_y, int kx_of_z) {
+    return hn::IfThenElse(on_x, v[kx_of_x], hn::IfThenElse(on_y, v[kx_of_y], v[kx_of_z]));
+  };
+  const V den = pick(dir, 0, 1, 2);
+  const auto flip = hn::Lt(den, hn::Zero(d));
+  const V dx0 = pick(dir, 1, 2, 0), dy0 = pick(dir, 2, 0, 1);
+  const V ox0 = pick(o, 1, 2, 0), oy0 = pick(o, 2, 0, 1);
+  const V sx = hn::Div(hn::IfThenElse(flip, dy0, dx0), den);
+  const V sy = hn::Div(hn::IfThenElse(flip, dx0, dy0), den);
+  hn::Store(sx, d, p->sx + base);
+  hn::Store(sy, d, p->sy + base);
+  hn::Store(hn::Div(one, den), d, p->sz + base);
+  hn::Store(hn::IfThenElse(flip, oy0, ox0), d, p->ox + base);
+  hn::Store(hn::IfThenElse(flip, ox0, oy0), d, p->oy + base);
+  hn::Store(pick(o, 0, 1, 2), d, p->oz + base);
+  const V depth_kz = pick(depth, 0, 1, 2);
+  hn::Store(hn::Mul(hn::Set(d, ray_setup::kHitSlack), hn::Div(depth_kz, hn::Abs(den))), d,
+            p->slack + base);
+  // ShearWeight: FMax(|s|, m) = |s| > m ? |s| : m for each shear.
+  const V min_shear = hn::Set(d, watertight_internal::kEdgeBoundMinShear);
+  hn::Store(hn::Add(hn::Max(hn::Abs(sx), min_shear), hn::Max(hn::Abs(sy), min_shear)), d,
+            p->shear_weight + base);
+  // The key: sign bits of the direction and kz.
+  const hn::RebindToSigned<D> di;
+  const auto zero_i = hn::Zero(di);
+  const uint32_t neg[3] = {Bits(di, hn::Lt(hn::BitCast(di, dir[0]), zero_i)),
+                           Bits(di, hn::Lt(hn::BitCast(di, dir[1]), zero_i)),
+                           Bits(di, hn::Lt(hn::BitCast(di, dir[2]), zero_i))};
+  const uint32_t x_bits = Bits(d, on_x), y_bits = Bits(d, on_y);
+  for (size_t i = 0; i < hn::Lanes(d); ++i) {
+    const int kz = (x_bits >> i) & 1 ? 0 : (y_bits >> i) & 1 ? 1 : 2;
+    p->key[base + i] = static_cast<uint8_t>(((neg[0] >> i) & 1) | ((neg[1] >> i) & 1) << 1 |
+                                            ((neg[2] >> i) & 1) << 2 | kz << 3);
+  }
+  return Bits(d, hn::Le(lo, hi));
+}
+
+uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p) {
+  const hn::ScalableTag<float> d;
+  const size_t n = hn::Lanes(d);
+  uint32_t live = 0;
+  for (size_t base = 0; base < kLanes; base += n) live |= SetUpChunk(d, box, base, p) << base;
+  return live;
+}
+
+void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit,
+                    Hit* best) {
+  const hn::ScalableTag<float> d;
+  const size_t n = hn::Lanes(d);
+  const uint32_t full = n >= 32 ? ~0u : (1u << n) - 1;
+  for (size_t base = 0; base < kLanes; base += n) {
+    const uint32_t lanes = (g.lanes >> base) & full;
+    if (lanes == 0) continue;
+    if (any_hit) {
+      TraceChunk<true>(d, tree, p, g, base, lanes, best);
+    } else {
+      TraceChunk<false>(d, tree, p, g, base, lanes, best);
+    }
+  }
+}
+
+const char* KernelTargetImpl() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace packet_internal
+}  // namespace kdtree
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace kdtree {
+namespace packet_internal {
+
+HWY_EXPORT(TraceGroupImpl);
+HWY_EXPORT(SetUpLanesImpl);
+HWY_EXPORT(KernelTargetImpl);
+
+uint32_t SetUpLanes(const AABB& box, PacketRays* p) {
+  return HWY_DYNAMIC_DISPATCH(SetUpLanesImpl)(box, p);
+}
+
+void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best) {
+  HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, any_hit, best);
+}
+
+const char* KernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTargetImpl)(); }
+
+std::vector<int64_t> KernelTargets() { return hwy::SupportedAndGeneratedTargets(); }
+
+}  // namespace packet_internal
+}  // namespace kdtree
+#endif  // HWY_ONCE
