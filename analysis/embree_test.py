@@ -93,6 +93,22 @@ class EmbreeTest(Fixture):
         # Not a run of the report's tables.
         self.assertEqual(kdtree_tables.generate(self.ctx)["NumKdRuns"][0], "27")
 
+    def test_best_mode_against_embrees_best(self):
+        self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.8, 0.9]),
+                    T_R=0.25, n_tri=60000,
+                    fast_render=testdata.fast_render([1.2, 1.25, 1.4], best=[0.8, 1.05, 0.9]))
+        self.append("beta", "sah-packet", testdata.embree(0.2, [0.7]), T_R=0.25, n_tri=60000,
+                    fast_render=testdata.fast_render([1.2]))
+        macros = embree.generate(self.ctx)
+        # beta's record has no Embree packets: no best-mode ratio.
+        self.assertEqual(macros["EmbreeBestScenes"][0], "1")
+        self.assertEqual(macros["EmbreeBestRatioMedian"][0], "0.90")
+        self.assertEqual(macros["EmbreeBestBigAtLeastOne"][0], "0")
+        self.assertEqual(macros["EmbreePacketBigAtLeastEighty"][0], "1")
+        data = self.rows()
+        self.assertEqual(data[0]["runs_best"], [0.8, 1.05, 0.9])
+        self.assertIsNone(data[1]["ratio_best"])
+
     def test_ratio_figure(self):
         self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.9]),
                     fast_render=testdata.fast_render([1.1, 1.3]))

@@ -33,7 +33,12 @@ EXPECTED_MACROS = [
     "EmbreePacketRatioMin", "EmbreePacketRatioMax", "EmbreePacketBigScenes",
     "EmbreePacketBigAtLeastSeventy", "EmbreeFastScenes", "EmbreeFastRatioMedian",
     "EmbreeFastRatioMin", "EmbreeFastRatioMax", "EmbreeFastBigScenes",
-    "EmbreeFastBigAtLeastSeventy", "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
+    "EmbreeFastBigAtLeastSeventy", "EmbreeBestScenes", "EmbreeBestRatioMedian",
+    "EmbreeBestRatioMin", "EmbreeBestRatioMax", "EmbreeBestBigScenes",
+    "EmbreeBestBigAtLeastSeventy",
+    *[p + s for p in ("Embree", "EmbreePacket", "EmbreeFast", "EmbreeBest")
+      for s in ("BigAtLeastEighty", "BigAtLeastOne")],
+    "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
     "BinnedScenes", "BinnedBuildOverEmbreeMedian", "BinnedPerfOverEmbreeMedian",
     "BinnedBuildOverReportMedian", "BinnedPerfOverReportMedian", "BinnedBeatsReportBoth",

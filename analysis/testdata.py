@@ -263,12 +263,22 @@ def kdrt_record(scene, preset, added=None, **over):
     return rec
 
 
-def fast_render(ratios, t_r=0.16):
-    """kdrt's "fast_render" object with its paired ratios to Embree."""
+def fast_render(ratios, t_r=0.16, best=None):
+    """kdrt's "fast_render" object with its paired ratios to Embree (and,
+    with `best`, Embree's packets and the best-mode ratios per round)."""
     ratios = list(ratios)
-    return {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
-            "shadow_s": t_r / 2, "paired_ratio_runs": ratios,
-            "paired_ratio": statistics.median(ratios)}
+    out = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
+           "shadow_s": t_r / 2, "paired_ratio_runs": ratios,
+           "paired_ratio": statistics.median(ratios)}
+    if best is not None:
+        best = list(best)
+        out["embree_packets"] = {"T_R": t_r, "T_R_runs": [t_r] * len(best),
+                                 "primary_s": t_r / 2, "shadow_s": t_r / 2,
+                                 "paired_ratio_runs": best,
+                                 "paired_ratio": statistics.median(best)}
+        out["best_paired_ratio_runs"] = best
+        out["best_paired_ratio"] = statistics.median(best)
+    return out
 
 
 def write_kdtree(results_dir, records):

@@ -1,6 +1,9 @@
 #include "cc/tools/kdrt_record.h"
 
+#include <algorithm>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "cc/base/fnv.h"
@@ -80,6 +83,29 @@ void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const Re
   }
 }
 
+namespace {
+
+const Lane* FindLane(const std::vector<Lane>& lanes, const std::string& name) {
+  for (const Lane& l : lanes) {
+    if (l.name == name) return &l;
+  }
+  return nullptr;
+}
+
+// Per round both have: min(Embree, Embree packets) / min(kd-tree, kd-tree
+// fast), the best mode of each against the other's.
+std::vector<double> BestRatios(const Lane& e, const Lane& ep, const Lane& k, const Lane& kf) {
+  std::vector<double> out;
+  const size_t n = std::min(std::min(e.timed.t_r.size(), ep.timed.t_r.size()),
+                            std::min(k.timed.t_r.size(), kf.timed.t_r.size()));
+  for (size_t i = 0; i < n; ++i) {
+    out.push_back(std::min(e.timed.t_r[i], ep.timed.t_r[i]) / std::min(k.timed.t_r[i], kf.timed.t_r[i]));
+  }
+  return out;
+}
+
+}  // namespace
+
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality, bool embree_timed,
                     const TimedBuilds& b, const Json& disagreements, double pixels, Json* rec) {
   Json& out = *rec;
@@ -93,13 +119,23 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
                           {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)}};
   }
   if (quality == nullptr) return;
-  out["embree"] = EmbreeJson(*quality, b, disagreements, embree_timed ? &lanes.back() : nullptr, lanes.front(),
-                             pixels);
+  const Lane* el = embree_timed ? FindLane(lanes, "embree") : nullptr;
+  out["embree"] = EmbreeJson(*quality, b, disagreements, el, lanes.front(), pixels);
   out["perf_ratio_kd_over_embree"] = out["embree"]["paired_ratio"];
-  if (fast && embree_timed) {
-    const std::vector<double> fp = PairedRatios(lanes.back().timed.t_r, lanes[1].timed.t_r);
+  if (fast && el != nullptr) {
+    const std::vector<double> fp = PairedRatios(el->timed.t_r, lanes[1].timed.t_r);
     out["fast_render"]["paired_ratio_runs"] = fp;
     out["fast_render"]["paired_ratio"] = Median(fp);
+    if (const Lane* ep = FindLane(lanes, "embree packets")) {
+      const std::vector<double> pp = PairedRatios(ep->timed.t_r, lanes[1].timed.t_r);
+      const std::vector<double> best = BestRatios(*el, *ep, lanes.front(), lanes[1]);
+      out["fast_render"]["embree_packets"] = {
+          {"T_R", Median(ep->timed.t_r)}, {"T_R_runs", ep->timed.t_r},
+          {"primary_s", Median(ep->timed.t_primary)}, {"shadow_s", Median(ep->timed.t_shadow)},
+          {"paired_ratio_runs", pp}, {"paired_ratio", Median(pp)}};
+      out["fast_render"]["best_paired_ratio_runs"] = best;
+      out["fast_render"]["best_paired_ratio"] = Median(best);
+    }
   }
 }
 
