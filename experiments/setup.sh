@@ -20,6 +20,7 @@ PKGS=(
   libtbb-dev             # oneTBB: parallel rendering / building
   libembree-dev          # Embree 3: the speed to beat
   libhwy-dev             # Google Highway: SIMD and run-time dispatch of the packet kernel
+  libpugixml-dev         # pugixml: SuperTuxKart's scene.xml
   nlohmann-json3-dev     # nlohmann-json: result records written and read as JSON
   python3 python3-pandas python3-numpy python3-matplotlib python3-pil python3-tqdm  # analysis, cost images
   pkg-config ca-certificates xz-utils

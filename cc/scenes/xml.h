@@ -1,13 +1,15 @@
-// A minimal XML reader: enough for SuperTuxKart's scene.xml and node.xml.
+// SuperTuxKart's scene.xml and node.xml as a tree of elements with their
+// attributes, read with pugixml (Debian libpugixml-dev).
 //
-// Builds a tree of elements with their attributes. Text content is dropped;
-// comments, processing instructions (<?xml ...?>), <!DOCTYPE ...> and CDATA
-// sections are skipped. Attribute values may use either quote and the five
-// predefined entities (&amp; &lt; &gt; &quot; &apos;) or numeric references
-// (&#65; &#x41;). No namespaces, no DTD processing, no external entities.
+// Text content, comments, processing instructions (<?xml ...?>) and the
+// DOCTYPE (its internal subset too) are dropped. Attribute values have the
+// five predefined entities (&amp; &lt; &gt; &quot; &apos;) and numeric
+// references (&#65; &#x41;) decoded; other references are kept as written.
+// No namespaces, no DTD processing, no external entities.
 //
-// Every read is bounded; malformed input gives InvalidArgumentError with the
-// line number ("line 12: ..."): callers prefix the file name.
+// Malformed input gives InvalidArgumentError with the line number
+// ("line 12: ..."): callers prefix the file name. pugixml parses without
+// recursion; the copy into XmlElement stops at XmlOptions::max_depth.
 #ifndef KDTREE_CC_SCENES_XML_H_
 #define KDTREE_CC_SCENES_XML_H_
 
