@@ -204,7 +204,7 @@ TEST_F(StkTrackTest, ErrorsNameTheFileAndLine) {
       {"  <object model=\"two.spm\" hpr=\"1 2 nan\"/>\n", "not three numbers"},
       {"  <library name=\"missing\"/>\n", "library 'missing': " + data_.string()},
       {"  <object model=\"bad.spm\"/>\n", "bad.spm: not an .spm file"},
-      {"  <object model=\"two.spm\">\n", scene + ": line 6: </scene> closes <object>"},
+      {"  <object model=\"two.spm\">\n", scene + ": line 6: Start-end tags mismatch"},
       {"  <track model=\"two.spm\"/>\n", scene + ":5: a second <track> element"},
   };
   Write("tracks/t/bad.spm", "not an spm");
