@@ -124,6 +124,214 @@ void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* o
   }
 }
 
+
+// What every pass reads: the frame and the options.
+struct Frame {
+  const TriangleSoup& soup;
+  const Tracer& tracer;
+  const View& view;
+  const RenderOptions& options;
+  Camera camera;
+  int w, h, threads, tile, n_lights, ao_samples;
+
+  Ray PixelRay(size_t p) const {
+    return camera.PrimaryRay(static_cast<int>(p % w), static_cast<int>(p / w));
+  }
+  // The triangle a secondary ray of primary hit `hit` leaves
+  // (RenderOptions::skip_origin), or kNoHit.
+  uint32_t Origin(const Hit& hit) const { return options.skip_origin ? hit.tri : kNoHit; }
+};
+
+// Ray recording (RenderOptions::record_rays) as a policy of the passes, not a
+// branch in their loops: NoRecord compiles to nothing; RowRecorder keeps
+// each ray and its result in its row's buffer (the passes then run whole
+// rows, so the rows' order is the pixels' order for any thread count).
+struct NoRecord {
+  static constexpr bool kOn = false;
+  void Primary(int, size_t, const Ray&, const Hit&) {}
+  void Secondary(int, RayKind, size_t, int, const Ray&, bool) {}
+};
+
+struct RowRecorder {
+  static constexpr bool kOn = true;
+  std::vector<std::vector<RayRecord>>* rows;
+  void Primary(int y, size_t p, const Ray& ray, const Hit& hit) {
+    RayRecord rec = MakeRecord(ray, RayKind::kPrimary, static_cast<uint32_t>(p), 0);
+    rec.hit = hit.hit();
+    if (hit.hit()) {
+      rec.tri = hit.tri;
+      rec.t = hit.t;
+      rec.u = hit.u;
+      rec.v = hit.v;
+    }
+    (*rows)[y].push_back(rec);
+  }
+  void Secondary(int y, RayKind kind, size_t p, int index, const Ray& ray, bool occluded) {
+    RayRecord rec = MakeRecord(ray, kind, static_cast<uint32_t>(p), static_cast<uint16_t>(index));
+    rec.hit = occluded;
+    (*rows)[y].push_back(rec);
+  }
+};
+
+// 1. Primary rays, one at a time: the hits per pixel; returns the hit count.
+template <class Sink>
+uint64_t PrimaryRays(const Frame& f, Sink sink, std::vector<Hit>* hits) {
+  return ForPixels(f.w, f.h, f.threads, f.tile, Sink::kOn, [&](int y, int x0, int x1) {
+    uint64_t n = 0;
+    for (int x = x0; x < x1; ++x) {
+      const size_t p = static_cast<size_t>(y) * f.w + x;
+      const Ray ray = f.camera.PrimaryRay(x, y);
+      const Hit hit = f.tracer.Intersect(ray);
+      (*hits)[p] = hit;
+      n += hit.hit();
+      sink.Primary(y, p, ray, hit);
+    }
+    return n;
+  });
+}
+
+// 1. Primary rays in packets of 4x4 pixels (RenderOptions::packets).
+uint64_t PrimaryPackets(const Frame& f, std::vector<Hit>* hits) {
+  return ForBands(f.w, f.h, f.threads, f.tile, false, kBlock, [&](int y0, int y1, int x0, int x1) {
+    uint64_t n = 0;
+    for (int x = x0; x < x1; x += kBlock) {
+      size_t pix[kTracerPacket];
+      Ray rays[kTracerPacket];
+      Hit out[kTracerPacket];
+      const int m = BlockPixels(f.w, y0, y1, x, x1, pix);
+      for (int i = 0; i < m; ++i) rays[i] = f.PixelRay(pix[i]);
+      f.tracer.IntersectPacket(rays, m, out);
+      for (int i = 0; i < m; ++i) {
+        (*hits)[pix[i]] = out[i];
+        n += out[i].hit();
+      }
+    }
+    return n;
+  });
+}
+
+// 2. Shadow rays, one per primary hit and light, one at a time: occluded[p *
+// n_lights + l]; returns the occluded count.
+template <class Sink>
+uint64_t ShadowRays(const Frame& f, Sink sink, const std::vector<Hit>& hits,
+                    std::vector<uint8_t>* occluded) {
+  return ForPixels(f.w, f.h, f.threads, f.tile, Sink::kOn, [&](int y, int x0, int x1) {
+    uint64_t blocked = 0;
+    for (int x = x0; x < x1; ++x) {
+      const size_t p = static_cast<size_t>(y) * f.w + x;
+      const Hit& hit = hits[p];
+      if (!hit.hit()) continue;
+      const SurfacePoint sp = MakeSurfacePoint(f.soup, f.camera.PrimaryRay(x, y), hit);
+      for (int l = 0; l < f.n_lights; ++l) {
+        const Ray ray = ShadowRay(sp, f.view.lights[l].position);
+        const bool occ = f.tracer.Occluded(ray, f.Origin(hit));
+        (*occluded)[p * f.n_lights + l] = occ;
+        blocked += occ;
+        sink.Secondary(y, RayKind::kShadow, p, l, ray, occ);
+      }
+    }
+    return blocked;
+  });
+}
+
+// 2. Shadow rays in packets: per 4x4 block and light, the shadow rays of the
+// block's hits together.
+uint64_t ShadowPackets(const Frame& f, const std::vector<Hit>& hits,
+                       std::vector<uint8_t>* occluded) {
+  return ForBands(f.w, f.h, f.threads, f.tile, false, kBlock, [&](int y0, int y1, int x0, int x1) {
+    uint64_t blocked = 0;
+    for (int x = x0; x < x1; x += kBlock) {
+      size_t pix[kTracerPacket], lit[kTracerPacket];
+      uint32_t origin[kTracerPacket];
+      SurfacePoint sp[kTracerPacket];
+      const int m = BlockPixels(f.w, y0, y1, x, x1, pix);
+      int n = 0;
+      for (int i = 0; i < m; ++i) {
+        const Hit& hit = hits[pix[i]];
+        if (!hit.hit()) continue;
+        sp[n] = MakeSurfacePoint(f.soup, f.PixelRay(pix[i]), hit);
+        origin[n] = hit.tri;
+        lit[n++] = pix[i];
+      }
+      for (int l = 0; l < f.n_lights && n > 0; ++l) {
+        Ray rays[kTracerPacket];
+        bool occ[kTracerPacket];
+        for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], f.view.lights[l].position);
+        f.tracer.OccludedPacket(rays, n, f.options.skip_origin ? origin : nullptr, occ);
+        for (int i = 0; i < n; ++i) {
+          (*occluded)[lit[i] * f.n_lights + l] = occ[i];
+          blocked += occ[i];
+        }
+      }
+    }
+    return blocked;
+  });
+}
+
+// 3. Ambient-occlusion rays, `ao_samples` per primary hit: the unoccluded
+// count per pixel; returns the occluded count.
+template <class Sink>
+uint64_t AoRays(const Frame& f, Sink sink, const std::vector<Hit>& hits,
+                std::vector<uint16_t>* open_count) {
+  return ForPixels(f.w, f.h, f.threads, f.tile, Sink::kOn, [&](int y, int x0, int x1) {
+    uint64_t blocked = 0;
+    for (int x = x0; x < x1; ++x) {
+      const size_t p = static_cast<size_t>(y) * f.w + x;
+      const Hit& hit = hits[p];
+      if (!hit.hit()) continue;
+      const SurfacePoint sp = MakeSurfacePoint(f.soup, f.camera.PrimaryRay(x, y), hit);
+      int open = 0;
+      for (int s = 0; s < f.ao_samples; ++s) {
+        const Ray ray = AoRay(sp, static_cast<uint32_t>(p), s, f.view.ao.distance);
+        const bool occ = f.tracer.Occluded(ray, f.Origin(hit));
+        open += !occ;
+        sink.Secondary(y, RayKind::kAo, p, s, ray, occ);
+      }
+      (*open_count)[p] = static_cast<uint16_t>(open);
+      blocked += f.ao_samples - open;
+    }
+    return blocked;
+  });
+}
+
+// 4. Shading: the image from the hits, occlusion flags and AO counts.
+void Shade(const Frame& f, const std::vector<uint8_t>& occluded,
+           const std::vector<uint16_t>& ao_open, RenderResult* res) {
+  const RenderOptions& o = f.options;
+  const bool shadows = !occluded.empty();
+  res->rgb.resize(static_cast<size_t>(f.w) * f.h * 3);
+  const uint8_t bg[3] = {ToByte(o.background.x), ToByte(o.background.y), ToByte(o.background.z)};
+  ForPixels(f.w, f.h, f.threads, f.tile, false, [&](int y, int x0, int x1) -> uint64_t {
+    for (int x = x0; x < x1; ++x) {
+      const size_t p = static_cast<size_t>(y) * f.w + x;
+      uint8_t* rgb = &res->rgb[3 * p];
+      const Hit& hit = res->primary_hits[p];
+      if (!hit.hit()) {
+        for (int c = 0; c < 3; ++c) rgb[c] = bg[c];
+        continue;
+      }
+      const Ray ray = f.camera.PrimaryRay(x, y);
+      const SurfacePoint sp = MakeSurfacePoint(f.soup, ray, hit);
+      const float ao = f.ao_samples > 0 ? static_cast<float>(ao_open[p]) / f.ao_samples : 1.0f;
+      float direct = 0.0f;
+      if (f.n_lights > 0) {
+        for (int l = 0; l < f.n_lights; ++l) {
+          if (shadows && occluded[p * f.n_lights + l]) continue;
+          direct += std::fmax(0.0f, Dot(sp.normal, Normalize(f.view.lights[l].position - sp.p())));
+        }
+        direct /= static_cast<float>(f.n_lights);
+      } else {
+        direct = std::fabs(Dot(sp.normal, ray.dir));
+      }
+      const Vec3 c = o.albedo * (o.ambient * ao + (1.0f - o.ambient) * direct);
+      rgb[0] = ToByte(c.x);
+      rgb[1] = ToByte(c.y);
+      rgb[2] = ToByte(c.z);
+    }
+    return 0;
+  });
+}
+
 }  // namespace
 
 uint64_t RenderBytes(const View& view, const RenderOptions& options) {
@@ -137,6 +345,8 @@ uint64_t RenderBytes(const View& view, const RenderOptions& options) {
   return pixels * per_pixel;
 }
 
+// One pass per effect, each timed apart; recording (RowRecorder) or not
+// (NoRecord), one ray at a time or in packets (never when recording).
 RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& view,
                     const RenderOptions& options) {
   std::unique_ptr<tbb::global_control> cap;
@@ -144,222 +354,57 @@ RenderResult Render(const TriangleSoup& soup, const Tracer& tracer, const View& 
     cap = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                 static_cast<size_t>(options.threads));
   }
-  const int w = view.width, h = view.height, threads = options.threads;
+  const int w = view.width, h = view.height;
   const size_t pixels = static_cast<size_t>(w) * h;
-  const Camera camera(view.camera, w, h);
   const int n_lights = static_cast<int>(view.lights.size());
+  const Frame f{soup, tracer, view, options, Camera(view.camera, w, h), w, h, options.threads,
+                options.tile_size, n_lights, view.ao.enabled() ? view.ao.samples : 0};
   const bool shadows = options.cast_shadow_rays && n_lights > 0;
-  const int ao_samples = view.ao.enabled() ? view.ao.samples : 0;
   const bool record = options.record_rays;
-  const int tile = options.tile_size;
+  const bool packets = options.packets && !record;
 
   RenderResult res;
   res.width = w;
   res.height = h;
   res.primary_hits.resize(pixels);
   std::vector<uint8_t> occluded(shadows ? pixels * n_lights : 0);
-  std::vector<uint16_t> ao_open(ao_samples > 0 ? pixels : 0);
+  std::vector<uint16_t> ao_open(f.ao_samples > 0 ? pixels : 0);
   std::vector<std::vector<RayRecord>> rows(record ? h : 0);
+  const RowRecorder recorder{&rows};
   const Clock::time_point start = Clock::now();
 
-  // Packets of 4x4 pixels (RenderOptions::packets); never when recording.
-  const bool packets = options.packets && !record;
-  // A shadow or AO ray leaving the surface of primary hit `hit`
-  // (RenderOptions::skip_origin: the tracer may leave that triangle untested).
-  const bool skip_origin = options.skip_origin;
-  const auto secondary_occluded = [&](const Ray& ray, const Hit& hit) {
-    return tracer.Occluded(ray, skip_origin ? hit.tri : kNoHit);
-  };
-  const auto pixel_ray = [&](size_t p) {
-    return camera.PrimaryRay(static_cast<int>(p % w), static_cast<int>(p / w));
-  };
-
-  // 1. Primary rays.
   Clock::time_point t0 = Clock::now();
-  if (packets) {
-    res.p_hit = ForBands(w, h, threads, tile, false, kBlock, [&](int y0, int y1, int x0, int x1) {
-      uint64_t hits = 0;
-      for (int x = x0; x < x1; x += kBlock) {
-        size_t pix[kTracerPacket];
-        Ray rays[kTracerPacket];
-        Hit out[kTracerPacket];
-        const int n = BlockPixels(w, y0, y1, x, x1, pix);
-        for (int i = 0; i < n; ++i) rays[i] = pixel_ray(pix[i]);
-        tracer.IntersectPacket(rays, n, out);
-        for (int i = 0; i < n; ++i) {
-          res.primary_hits[pix[i]] = out[i];
-          hits += out[i].hit();
-        }
-      }
-      return hits;
-    });
-  } else {
-    res.p_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
-      {
-        uint64_t hits = 0;
-        for (int x = x0; x < x1; ++x) {
-          const size_t p = static_cast<size_t>(y) * w + x;
-          const Ray ray = camera.PrimaryRay(x, y);
-          const Hit hit = tracer.Intersect(ray);
-          res.primary_hits[p] = hit;
-          hits += hit.hit();
-          if (record) {
-            RayRecord rec = MakeRecord(ray, RayKind::kPrimary, static_cast<uint32_t>(p), 0);
-            rec.hit = hit.hit();
-            if (hit.hit()) {
-              rec.tri = hit.tri;
-              rec.t = hit.t;
-              rec.u = hit.u;
-              rec.v = hit.v;
-            }
-            rows[y].push_back(rec);
-          }
-        }
-        return hits;
-      }
-    });
-  }
+  res.p_hit = packets  ? PrimaryPackets(f, &res.primary_hits)
+              : record ? PrimaryRays(f, recorder, &res.primary_hits)
+                       : PrimaryRays(f, NoRecord(), &res.primary_hits);
   res.primary.seconds = Seconds(t0);
   res.primary.rays = pixels;
   res.p_miss = pixels - res.p_hit;
   if (record) Append(&rows, &res.rays);
 
-  // 2. Shadow rays: one per primary hit and light.
   if (shadows) {
     t0 = Clock::now();
-    if (packets) {
-      // Per 4x4 block and light, the shadow rays of the block's hits together.
-      res.s_hit = ForBands(w, h, threads, tile, false, kBlock, [&](int y0, int y1, int x0, int x1) {
-        uint64_t blocked = 0;
-        for (int x = x0; x < x1; x += kBlock) {
-          size_t pix[kTracerPacket], lit[kTracerPacket];
-          uint32_t origin[kTracerPacket];
-          const int m = BlockPixels(w, y0, y1, x, x1, pix);
-          SurfacePoint sp[kTracerPacket];
-          int n = 0;
-          for (int i = 0; i < m; ++i) {
-            const Hit& hit = res.primary_hits[pix[i]];
-            if (!hit.hit()) continue;
-            sp[n] = MakeSurfacePoint(soup, pixel_ray(pix[i]), hit);
-            origin[n] = hit.tri;
-            lit[n++] = pix[i];
-          }
-          for (int l = 0; l < n_lights && n > 0; ++l) {
-            Ray rays[kTracerPacket];
-            bool occ[kTracerPacket];
-            for (int i = 0; i < n; ++i) rays[i] = ShadowRay(sp[i], view.lights[l].position);
-            tracer.OccludedPacket(rays, n, skip_origin ? origin : nullptr, occ);
-            for (int i = 0; i < n; ++i) {
-              occluded[lit[i] * n_lights + l] = occ[i];
-              blocked += occ[i];
-            }
-          }
-        }
-        return blocked;
-      });
-    } else {
-      res.s_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
-        {
-          uint64_t blocked = 0;
-          for (int x = x0; x < x1; ++x) {
-            const size_t p = static_cast<size_t>(y) * w + x;
-            const Hit& hit = res.primary_hits[p];
-            if (!hit.hit()) continue;
-            const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
-            for (int l = 0; l < n_lights; ++l) {
-              const Ray ray = ShadowRay(sp, view.lights[l].position);
-              const bool occ = secondary_occluded(ray, hit);
-              occluded[p * n_lights + l] = occ;
-              blocked += occ;
-              if (record) {
-                RayRecord rec = MakeRecord(ray, RayKind::kShadow, static_cast<uint32_t>(p),
-                                           static_cast<uint16_t>(l));
-                rec.hit = occ;
-                rows[y].push_back(rec);
-              }
-            }
-          }
-          return blocked;
-        }
-      });
-    }
+    const std::vector<Hit>& hits = res.primary_hits;
+    res.s_hit = packets  ? ShadowPackets(f, hits, &occluded)
+                : record ? ShadowRays(f, recorder, hits, &occluded)
+                         : ShadowRays(f, NoRecord(), hits, &occluded);
     res.shadow.seconds = Seconds(t0);
     res.shadow.rays = res.p_hit * n_lights;
     res.s_miss = res.shadow.rays - res.s_hit;
     if (record) Append(&rows, &res.rays);
   }
 
-  // 3. Ambient-occlusion rays.
-  if (ao_samples > 0) {
+  if (f.ao_samples > 0) {
     t0 = Clock::now();
-    res.ao_hit = ForPixels(w, h, threads, tile, record, [&](int y, int x0, int x1) {
-      {
-        uint64_t blocked = 0;
-        for (int x = x0; x < x1; ++x) {
-          const size_t p = static_cast<size_t>(y) * w + x;
-          const Hit& hit = res.primary_hits[p];
-          if (!hit.hit()) continue;
-          const SurfacePoint sp = MakeSurfacePoint(soup, camera.PrimaryRay(x, y), hit);
-          int open = 0;
-          for (int s = 0; s < ao_samples; ++s) {
-            const Ray ray = AoRay(sp, static_cast<uint32_t>(p), s, view.ao.distance);
-            const bool occ = secondary_occluded(ray, hit);
-            open += !occ;
-            if (record) {
-              RayRecord rec = MakeRecord(ray, RayKind::kAo, static_cast<uint32_t>(p),
-                                         static_cast<uint16_t>(s));
-              rec.hit = occ;
-              rows[y].push_back(rec);
-            }
-          }
-          ao_open[p] = static_cast<uint16_t>(open);
-          blocked += ao_samples - open;
-        }
-        return blocked;
-      }
-    });
+    res.ao_hit = record ? AoRays(f, recorder, res.primary_hits, &ao_open)
+                        : AoRays(f, NoRecord(), res.primary_hits, &ao_open);
     res.ao.seconds = Seconds(t0);
-    res.ao.rays = res.p_hit * ao_samples;
+    res.ao.rays = res.p_hit * f.ao_samples;
     res.ao_miss = res.ao.rays - res.ao_hit;
     if (record) Append(&rows, &res.rays);
   }
 
-  // 4. Shading.
-  res.rgb.resize(pixels * 3);
-  const uint8_t bg[3] = {ToByte(options.background.x), ToByte(options.background.y),
-                         ToByte(options.background.z)};
-  ForPixels(w, h, threads, tile, false, [&](int y, int x0, int x1) -> uint64_t {
-    {
-      for (int x = x0; x < x1; ++x) {
-        const size_t p = static_cast<size_t>(y) * w + x;
-        const Hit& hit = res.primary_hits[p];
-        if (!hit.hit()) {
-          res.rgb[3 * p] = bg[0];
-          res.rgb[3 * p + 1] = bg[1];
-          res.rgb[3 * p + 2] = bg[2];
-          continue;
-        }
-        const Ray ray = camera.PrimaryRay(x, y);
-        const SurfacePoint sp = MakeSurfacePoint(soup, ray, hit);
-        const float ao = ao_samples > 0 ? static_cast<float>(ao_open[p]) / ao_samples : 1.0f;
-        float direct = 0.0f;
-        if (n_lights > 0) {
-          for (int l = 0; l < n_lights; ++l) {
-            if (shadows && occluded[p * n_lights + l]) continue;
-            direct += std::fmax(0.0f, Dot(sp.normal, Normalize(view.lights[l].position - sp.p())));
-          }
-          direct /= static_cast<float>(n_lights);
-        } else {
-          direct = std::fabs(Dot(sp.normal, ray.dir));
-        }
-        const Vec3 c = options.albedo * (options.ambient * ao + (1.0f - options.ambient) * direct);
-        res.rgb[3 * p] = ToByte(c.x);
-        res.rgb[3 * p + 1] = ToByte(c.y);
-        res.rgb[3 * p + 2] = ToByte(c.z);
-      }
-    }
-    return 0;
-  });
+  Shade(f, occluded, ao_open, &res);
   res.seconds = Seconds(start);
   return res;
 }
