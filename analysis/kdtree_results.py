@@ -67,6 +67,7 @@ FIELDS = {
     # single rays and its packets (rtcIntersect16) over the faster of ours.
     "best_ratio": "fast_render.best_paired_ratio",
     "best_ratio_runs": "fast_render.best_paired_ratio_runs",
+    "embree_packets_T_R_runs": "fast_render.embree_packets.T_R_runs",
     "all_rays_per_s": "all_rays_per_s",
     "N_IT": "N_IT", "N_TR": "N_TR",
     "N_I": "N_I", "N_L": "N_L", "N_TP": "N_TP", "N_AP": "N_AP",

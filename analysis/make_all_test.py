@@ -36,7 +36,10 @@ EXPECTED_MACROS = [
     "EmbreeFastBigAtLeastSeventy", "EmbreeBestScenes", "EmbreeBestRatioMedian",
     "EmbreeBestRatioMin", "EmbreeBestRatioMax", "EmbreeBestBigScenes",
     "EmbreeBestBigAtLeastSeventy",
-    *[p + s for p in ("Embree", "EmbreePacket", "EmbreeFast", "EmbreeBest")
+    *["EmbreeImage" + s for s in ("Scenes", "RatioMedian", "RatioMin", "RatioMax",
+                                  "BigScenes", "BigAtLeastSeventy", "MillionScenes",
+                                  "MillionAtLeastOne")],
+    *[p + s for p in ("Embree", "EmbreePacket", "EmbreeFast", "EmbreeBest", "EmbreeImage")
       for s in ("BigAtLeastEighty", "BigAtLeastOne")],
     "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
