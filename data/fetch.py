@@ -153,94 +153,6 @@ def camera_from_bounds(lo, hi, up_axis=1, framing="object", fov_deg=45.0):
 
 # ---------------------------------------------------------------- counting
 
-def count_plain(path):
-    """Triangles of an OBJ/PLY/OFF file, polygons counted as fans (n - 2)."""
-    suffix = path.suffix.lower()
-    if suffix == ".obj":
-        n = 0
-        with open(path, "rb") as f:
-            for line in f:
-                if line.startswith(b"f ") or line.startswith(b"f\t"):
-                    n += max(0, len(line.split()) - 3)
-        return n
-    if suffix == ".off":
-        with open(path, "rb") as f:
-            tokens = []
-            for line in f:
-                line = line.split(b"#")[0].strip()
-                if not line:
-                    continue
-                tokens.extend(line.split())
-                if len(tokens) >= 4:
-                    break
-            if not tokens[0].endswith(b"OFF"):
-                raise SceneError(f"{path}: not an OFF file")
-            nv, nf = int(tokens[1]), int(tokens[2])
-            n, seen_v = 0, 0
-            for line in f:
-                line = line.split(b"#")[0].strip()
-                if not line:
-                    continue
-                if seen_v < nv:
-                    seen_v += 1
-                    continue
-                n += max(0, int(line.split()[0]) - 2)
-                nf -= 1
-                if nf == 0:
-                    break
-            return n
-    if suffix == ".ply":
-        with open(path, "rb") as f:
-            header = []
-            while True:
-                line = f.readline()
-                if not line:
-                    raise SceneError(f"{path}: no end_header")
-                header.append(line.decode("ascii", "replace").strip())
-                if header[-1] == "end_header":
-                    break
-            fmt = next(h.split()[1] for h in header if h.startswith("format"))
-            elements, cur = [], None
-            for h in header:
-                w = h.split()
-                if w[:1] == ["element"]:
-                    cur = [w[1], int(w[2]), []]
-                    elements.append(cur)
-                elif w[:1] == ["property"] and cur is not None:
-                    cur[2].append(w[1:])
-            sizes = {"char": "b", "uchar": "B", "short": "h", "ushort": "H", "int": "i",
-                     "uint": "I", "float": "f", "double": "d", "int8": "b", "uint8": "B",
-                     "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
-                     "float32": "f", "float64": "d"}
-            n = 0
-            if fmt == "ascii":
-                lines = (l for l in f if l.strip())
-                for name, count, props in elements:
-                    for _ in range(count):
-                        vals = next(lines).split()
-                        if name == "face":
-                            n += max(0, int(vals[0]) - 2)
-                return n
-            if fmt != "binary_little_endian":
-                raise SceneError(f"{path}: PLY format {fmt} not counted")
-            for name, count, props in elements:
-                if all(p[0] != "list" for p in props):
-                    f.seek(count * struct.calcsize("<" + "".join(sizes[p[0]] for p in props)), 1)
-                    continue
-                for _ in range(count):
-                    for p in props:
-                        if p[0] == "list":
-                            cfmt, ifmt = "<" + sizes[p[1]], sizes[p[2]]
-                            k = struct.unpack(cfmt, f.read(struct.calcsize(cfmt)))[0]
-                            f.seek(k * struct.calcsize("<" + ifmt), 1)
-                            if name == "face":
-                                n += max(0, k - 2)
-                        else:
-                            f.seek(struct.calcsize("<" + sizes[p[0]]), 1)
-            return n
-    raise SceneError(f"{path}: no plain counter for {suffix} files")
-
-
 class Tools:
     """The C++ tools (//cc/scenes:generate, :mesh_info, :stk_track), built on first use."""
 
@@ -272,22 +184,18 @@ class Tools:
         return self.bin
 
     def measure(self, path):
-        """{'triangles', 'bounds', 'counted_by'}; bounds may be None."""
-        try:
-            tool = self.ensure() / "mesh_info"
-        except SceneError:
-            tool = None
-        if tool is not None:
-            proc = subprocess.run([str(tool), str(path)], stdout=subprocess.PIPE,
-                                  stderr=subprocess.PIPE, text=True)
-            if proc.returncode == 0:
-                info = json.loads(proc.stdout)
-                return {"triangles": info["triangles"], "bounds": info["bounds"],
-                        "counted_by": "assimp (mesh_info)"}
-            why = (f"crashed (signal {-proc.returncode})" if proc.returncode < 0
-                   else proc.stderr.strip())
-            raise SceneError(f"assimp cannot read {path.name}: {why}")
-        return {"triangles": count_plain(path), "bounds": None, "counted_by": "plain counter"}
+        """{'triangles', 'bounds', 'counted_by'}: the project's own loader
+        (assimp, through //cc/scenes:mesh_info) counts, as the renderer will
+        load it; a SceneError when the tool cannot be built."""
+        proc = subprocess.run([str(self.ensure() / "mesh_info"), str(path)],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        if proc.returncode == 0:
+            info = json.loads(proc.stdout)
+            return {"triangles": info["triangles"], "bounds": info["bounds"],
+                    "counted_by": "assimp (mesh_info)"}
+        why = (f"crashed (signal {-proc.returncode})" if proc.returncode < 0
+               else proc.stderr.strip())
+        raise SceneError(f"assimp cannot read {path.name}: {why}")
 
 
 # ---------------------------------------------------------------- sources
