@@ -27,8 +27,8 @@ the simple loaders, for .ply/.obj/.off) can read. Sources, by manifest `kind`:
   url        The report's original file from McGuire's archive, only when the
              network allows; otherwise skipped with a message (`optional`).
 Every obtained file is checked with //cc/scenes:mesh_info (assimp, flattened
-node hierarchy, run as a child process) or, when that tool cannot be built, a
-plain counter for OBJ/PLY/OFF; the count is compared with expected_triangles.
+node hierarchy, run as a child process: the loader the renderer uses); the
+count is compared with expected_triangles.
 
 Idempotent: a scene whose file is in the cache and was made from the same
 manifest entry is not fetched again. One scene failing does not stop the
