@@ -20,8 +20,9 @@ against best mode (#23's fair bar): with the fast mode, Embree's packet calls
 (rtcIntersect16 / rtcOccluded16 on the same 4x4 blocks) are timed in the same
 rounds, and per round the faster of Embree's two modes is divided by the
 faster of ours (fast_render.best_paired_ratio; series "best"). Time to image
-(macros EmbreeImage*): per round, Embree's build plus its best render over
-our build (sah-packet) plus our best render. A record
+(macros EmbreeImage*): Embree's build plus its best render over our build
+(sah-packet) plus our best render, each the median of its rounds
+(time_to_image). A record
 without paired ratios (made before they were recorded) gives no ratio: its
 cells are dashes and the caption counts them. Embree's times shown are the
 medians of all its timed rounds on the scene (over every kd-tree run that
@@ -146,22 +147,26 @@ def row(df, scene, recs):
 
 
 def time_to_image(r):
-    """(median, [per round]) of Embree's time to image over ours, best modes:
-    per round, Embree's build plus the faster of its single-ray and packet
-    renders over our build plus the faster of our single-ray and fast-mode
-    renders (a record's build and render rounds are the same rounds, kdrt
-    --repeats); (None, []) without every list, or with lists of different
-    lengths."""
+    """(Embree's time to image over ours, []) in the best modes, or (None,
+    []): Embree's build plus its best render over our build (this record's
+    tree) plus our best render. A record's renders are timed in rounds of
+    every tracer, its builds after them in rounds of their own (each stops
+    on its own time budget), so the best render is taken per render round
+    (the faster of single rays and packets), then each term is the median of
+    its rounds; there is no per-round spread to give."""
     if r is None:
         return None, []
-    lists = [r[c] for c in ("T_B_runs", "T_R_runs", "T_R_fast_runs", "embree_T_B_runs",
-                            "embree_T_R_runs", "embree_packets_T_R_runs")]
-    if not all(isinstance(x, list) and x for x in lists) or len({len(x) for x in lists}) != 1:
+    cols = ("T_B_runs", "T_R_runs", "T_R_fast_runs", "embree_T_B_runs", "embree_T_R_runs",
+            "embree_packets_T_R_runs")
+    lists = [r[c] for c in cols]
+    if not all(isinstance(x, list) and x for x in lists):
         return None, []
     ours_b, ours_r, ours_f, emb_b, emb_r, emb_p = lists
-    runs = [(emb_b[i] + min(emb_r[i], emb_p[i])) / (ours_b[i] + min(ours_r[i], ours_f[i]))
-            for i in range(len(ours_b))]
-    return statistics.median(runs), runs
+    if len({len(ours_r), len(ours_f), len(emb_r), len(emb_p)}) != 1:
+        return None, []
+    ours = statistics.median(ours_b) + statistics.median(map(min, ours_r, ours_f))
+    emb = statistics.median(emb_b) + statistics.median(map(min, emb_r, emb_p))
+    return emb / ours, []
 
 
 def _quotient(a, b):
@@ -222,7 +227,7 @@ def render(data):
                "report (preset \\texttt{sah-packet}: the full SAH counted per "
                "packet of 4, $K_T = 45$, hybrid split search, clipping and pruning); "
                "fast/Embree is the paired ratio of that tree in our renderer's "
-               "fastest mode (primary and shadow rays in packets of $2\\times 2$ pixels, "
+               "fastest mode (primary and shadow rays in packets of $4\\times 4$ pixels, "
                "shadow rays leaving their origin triangle untested; the same image).%s" % (
                    " %d run%s recorded no paired ratio (made before kdrt paired "
                    "its rounds) and give%s none." % (

@@ -131,7 +131,7 @@ def _cases_table(records, binaries):
     stride = _ray_stride(records)
     if stride > 1:
         notes.append("This run checked every %d\\textsuperscript{th} packet "
-                     "of 4 of each case's rays (a quick profile); the full "
+                     "of 16 of each case's rays (a quick profile); the full "
                      "profile and \\texttt{bazel test} check every ray."
                      % stride)
     tex = latex.booktabs(header, body, align="l" + "r" * len(numbers),

@@ -163,11 +163,11 @@ class RobustnessTest(unittest.TestCase):
     def test_a_sampled_suite_says_so(self):
         self.write(robustness.SUITE_FILE, SUITE)
         self.run_gen()
-        self.assertNotIn("packet of 4", self.read("robust_cases.tex"))
+        self.assertNotIn("packet of 16", self.read("robust_cases.tex"))
         self.write(robustness.SUITE_FILE,
                    SUITE + [{"kind": "suite", "ray_stride": 4}])
         self.run_gen()
-        self.assertIn("every 4\\textsuperscript{th} packet of 4",
+        self.assertIn("every 4\\textsuperscript{th} packet of 16",
                       self.read("robust_cases.tex"))
 
     def test_cost_verdict(self):

@@ -268,7 +268,7 @@ def fast_render(ratios, t_r=0.16, best=None):
     with `best`, Embree's packets and the best-mode ratios per round)."""
     ratios = list(ratios)
     out = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
-           "shadow_s": t_r / 2, "paired_ratio_runs": ratios,
+           "shadow_s": t_r / 2, "packet_kernel": "AVX3", "paired_ratio_runs": ratios,
            "paired_ratio": statistics.median(ratios)}
     if best is not None:
         best = list(best)

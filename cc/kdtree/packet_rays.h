@@ -17,7 +17,8 @@ namespace packet_internal {
 inline constexpr int kLanes = 16;  // rays per packet (kRayPacketSize)
 
 // Per lane i, the values of RaySetup (ray_setup.h) and of the ray's
-// WatertightRay; lanes without a live ray hold a copy of a live one.
+// WatertightRay. Lanes without a valid ray hold a copy of a valid one (so
+// that their arithmetic stays finite); only live lanes are ever traced.
 struct PacketRays {
   // The rays after SanitizeRay, by component.
   alignas(64) float dir[3][kLanes];
@@ -78,7 +79,7 @@ uint32_t SetUpLanes(const AABB& box, PacketRays* p);
 
 // Traces the group's lanes through tree (which has the leaf layout) and
 // writes best[i] for each (closest hit, or with any_hit the first hit found;
-// best[i].t must hold ray i's tmax on entry). Chosen at run time for the CPU
+// best[i].t must hold ray i's tmax on entry). best has kLanes entries. Chosen at run time for the CPU
 // (Highway's dynamic dispatch: ray_packet_kernel.cc).
 void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best);
 

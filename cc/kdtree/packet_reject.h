@@ -1,6 +1,7 @@
 // The watertight test's common rejection for the 4 triangles of a leaf
-// packet (cc/kdtree/leaf_layout.h) at once, shared by the single-ray and the
-// packet traversal (traversal.cc, ray_packet.cc).
+// packet (cc/kdtree/leaf_layout.h) at once, for the single-ray traversal
+// (traversal.cc). The packet kernel's RejectRays (ray_packet_kernel.cc) does
+// the same for one triangle against a vector of rays.
 #ifndef KDTREE_CC_KDTREE_PACKET_REJECT_H_
 #define KDTREE_CC_KDTREE_PACKET_REJECT_H_
 

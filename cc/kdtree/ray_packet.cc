@@ -81,9 +81,13 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
   const Ray& copy = p->ray[__builtin_ctz(plain != 0 ? plain : valid)];
   for (int i = 0; i < kRayPacketSize; ++i) {
     if (plain & (1u << i)) continue;
-    const Ray ray = p->ray[i];
-    PutRay(copy, i, p);
-    if (zero & (1u << i)) p->ray[i] = ray;  // (p->ray alone: its lane is set below)
+    if (zero & (1u << i)) {
+      const Ray ray = p->ray[i];
+      PutRay(copy, i, p);
+      p->ray[i] = ray;  // (p->ray alone: its lane is set up below)
+    } else {
+      PutRay(copy, i, p);
+    }
   }
   p->live = SetUpLanes(tree.bounds, p) & plain;
   for (uint32_t m = zero; m != 0; m &= m - 1) {
@@ -134,12 +138,14 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
   for (int i = 0; i < n; ++i) origins[i] = options.origin_tri;
   PacketRays p;
   Prepare(tree, rays, n, origins, &p);
+  // The kernel reads and writes whole vectors of lanes: a full packet.
+  Hit best[kRayPacketSize];
   for (int i = 0; i < n; ++i) {
-    hits[i] = Hit();
-    if (p.live & (1u << i)) hits[i].t = p.tmax[i];
+    if (p.live & (1u << i)) best[i].t = p.tmax[i];
   }
-  if (p.live != 0) TraceLive(tree, p, false, hits);
+  if (p.live != 0) TraceLive(tree, p, false, best);
   for (int i = 0; i < n; ++i) {
+    hits[i] = best[i];
     if (!hits[i].hit()) hits[i].t = INFINITY;
   }
 }

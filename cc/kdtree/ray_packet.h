@@ -14,9 +14,10 @@
 //
 // The packet's rays are traced in groups that share their direction signs and
 // their watertight axes (usually one group). The kernel is 4, 8 or 16 lanes
-// wide (SSE4, AVX2, AVX-512), chosen at run time for the CPU by Google
-// Highway's dynamic dispatch (ray_packet_kernel.cc); a group wider than a
-// vector runs as several vectors.
+// wide (SSE4, AVX2, AVX-512; also SSSE3 and Highway's scalar emulation, which
+// the tests run too), chosen at run time for the CPU by Google Highway's
+// dynamic dispatch (ray_packet_kernel.cc); a group wider than a vector runs
+// as several vectors.
 //
 // Exactness: every lane applies the single-ray traversal's rules
 // (traversal.h), with the same float operations, to the same intervals, in
@@ -56,8 +57,8 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
 // tree and these options (else they trace the rays one by one).
 bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options = TraversalOptions());
 
-// The Highway target the packet kernel runs on ("AVX3", "AVX2", "SSE4", ...),
-// for records.
+// The Highway target the packet kernel runs on ("AVX3", "AVX2", "SSE4", ...;
+// kdrt's record fast_render.packet_kernel).
 const char* PacketKernelTarget();
 
 }  // namespace kdtree

@@ -50,8 +50,8 @@ size_t RayStride() {
 bool InSample(size_t i) { return (i / kRayPacketSize) % RayStride() == 0; }
 
 // body(begin, end) over [0, n) in oneTBB tasks, each range starting at a
-// multiple of the packet size (the packet checks below trace rays 4 by 4
-// from `begin`); the results do not depend on the split.
+// multiple of the packet size (the packet checks below trace rays
+// kRayPacketSize at a time from `begin`); the results do not depend on the split.
 void ParallelFor(size_t n, const std::function<void(size_t, size_t)>& body) {
   const size_t packets = (n + kRayPacketSize - 1) / kRayPacketSize;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 256), [&](const tbb::blocked_range<size_t>& r) {
@@ -90,7 +90,8 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
       bad[i] = !SameHit(got, reference[i]);
       bad_any[i] = Occluded(tree, rays[i], WithTest(mode)) != reference[i].hit();
     }
-    // The packet traversal (ray_packet.h) on consecutive rays, 4 at a time:
+    // The packet traversal (ray_packet.h) on consecutive rays, kRayPacketSize
+    // (16) at a time:
     // each lane must give the same answers.
     for (size_t i = begin; i < end; i += kRayPacketSize) {
       const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, end - i));

@@ -23,7 +23,7 @@ lines. Every such record is written to --out with "hard_case" (1-9),
 binary with its exit status ("passed": the gtest assertions, 0 mismatches,
 held), and last one {"kind": "suite", ...} record: the profile, whether every
 case ran and passed, its ray stride and the provenance. --ray_stride k
-(quick reproductions) has every check keep every k-th packet of 4 of its
+(quick reproductions) has every check keep every k-th packet of 16 of its
 case's rays (KDTREE_ROBUST_RAY_STRIDE, cc/robust/preset_check.h): every
 preset, mode and scene still runs, on 1/k of the rays; bazel test and the
 default of 1 check them all. --out is replaced only when all of

@@ -83,9 +83,6 @@ absl::StatusOr<XmlElement> ParseXml(absl::string_view text, const XmlOptions& op
   }
   pugi::xml_node root;
   for (const pugi::xml_node& node : doc.children()) {
-    if (node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata) {
-      return Error(lines.At(node.offset_debug()), "text outside the root element");
-    }
     if (node.type() != pugi::node_element) continue;
     if (root) return Error(lines.At(node.offset_debug() - 1), "a second root element");
     root = node;

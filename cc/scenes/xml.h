@@ -1,8 +1,9 @@
 // SuperTuxKart's scene.xml and node.xml as a tree of elements with their
 // attributes, read with pugixml (Debian libpugixml-dev).
 //
-// Text content, comments, processing instructions (<?xml ...?>) and the
-// DOCTYPE (its internal subset too) are dropped. Attribute values have the
+// Text content (also outside the root element), comments, processing
+// instructions (<?xml ...?>) and the DOCTYPE (its internal subset too) are
+// dropped. Attribute values have the
 // five predefined entities (&amp; &lt; &gt; &quot; &apos;) and numeric
 // references (&#65; &#x41;) decoded; other references are kept as written.
 // No namespaces, no DTD processing, no external entities.

@@ -53,8 +53,9 @@ TEST(Xml, DecodesEntities) {
 }
 
 // Malformed input fails with "line N: why" (pugixml's reason, or ours for
-// what pugixml accepts: a repeated attribute, a second root, text outside
-// the root, nesting too deep).
+// what pugixml accepts: a repeated attribute, a second root element,
+// nesting too deep). Text outside the root element is ignored, as pugixml
+// does.
 TEST(Xml, ErrorsGiveTheLine) {
   struct Case {
     const char* text;

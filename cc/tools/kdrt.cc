@@ -269,7 +269,9 @@ absl::Status Run() {
   if (embree_timed && fast) {
     // Embree's packet calls on the same 4x4 blocks (rtcIntersect16 with the
     // coherent flag, rtcOccluded16): with them, Embree's best mode per round
-    // is the faster of its two (#23's fair bar; record fast_render).
+    // is the faster of its two (#23's fair bar; record fast_render). Like
+    // the kd-tree's fast mode, it has no warm-up pass of its own: it runs
+    // on the structure the single-ray passes warmed.
     RenderOptions packets = ropt;
     packets.packets = true;
     lanes.push_back({"embree packets", b.embree.get(), packets});

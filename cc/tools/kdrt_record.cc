@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "cc/base/fnv.h"
 #include "cc/base/median.h"
+#include "cc/kdtree/ray_packet.h"
 
 namespace kdtree {
 
@@ -116,7 +117,8 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
   if (fast) {
     const Lane& fl = lanes[1];
     out["fast_render"] = {{"T_R", Median(fl.timed.t_r)}, {"T_R_runs", fl.timed.t_r},
-                          {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)}};
+                          {"primary_s", Median(fl.timed.t_primary)}, {"shadow_s", Median(fl.timed.t_shadow)},
+                          {"packet_kernel", PacketKernelTarget()}};
   }
   if (quality == nullptr) return;
   const Lane* el = embree_timed ? FindLane(lanes, "embree") : nullptr;
