@@ -27,6 +27,8 @@
 #endif
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+// Per target, after foreach_target.h:
+#include "cc/kdtree/mask_bits-inl.h"
 
 #include <cmath>
 #include <cstdint>
@@ -35,7 +37,6 @@
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/packet_rays.h"
-#include "cc/kdtree/ray_setup.h"
 #include "cc/kdtree/traversal.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -43,23 +44,6 @@ namespace kdtree {
 namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-// The mask's lanes as bits (bit i: lane i).
-template <class D>
-HWY_INLINE uint32_t Bits(D d, hn::Mask<D> m) {
-  uint8_t bytes[8] = {0};
-  hn::StoreMaskBits(d, m, bytes);
-  uint32_t bits;
-  std::memcpy(&bits, bytes, sizeof(bits));
-  return bits;
-}
-
-template <class D>
-HWY_INLINE hn::Mask<D> FromBits(D d, uint32_t bits) {
-  uint8_t bytes[8] = {0};
-  std::memcpy(bytes, &bits, sizeof(bits));
-  return hn::LoadMaskBits(d, bytes);
-}
 
 template <class D>
 HWY_INLINE hn::Vec<D> MaxAbs3(const hn::Vec<D> v[3]) {
@@ -177,7 +161,11 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
   }
 }
 
-// One vector of lanes, [base, base + Lanes(d)), of the group.
+// One vector of lanes, [base, base + Lanes(d)), of the group. (Longer than
+// the project's 80 lines: the descent, the leaf and the pop share the lanes'
+// intervals and masks, which stay in registers only inside one function;
+// the single-ray Traverse in traversal.cc is one function for the same
+// reason.)
 template <bool kAnyHit, class D>
 HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const Group& g,
                            size_t base, uint32_t lanes, Hit* best) {
@@ -275,91 +263,6 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
   }
 }
 
-// SetUpRay's vector path (ray_setup.h) for the lanes [base, base + Lanes(d)),
-// operation for operation (MINPS / MAXPS operand order included), and
-// MakeWatertightRay's axes and shears; returns the lanes that reach the box.
-template <class D>
-HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p) {
-  using V = hn::Vec<D>;
-  const V one = hn::Set(d, 1.0f), pad = hn::Set(d, ray_setup::kPad);
-  V o[3], dir[3], dl[3], dh[3], inv[3], depth[3];
-  V reach = hn::Zero(d);
-  for (int k = 0; k < 3; ++k) {
-    o[k] = hn::Load(d, p->org[k] + base);
-    dir[k] = hn::Load(d, p->dir[k] + base);
-    dl[k] = hn::Sub(hn::Set(d, box.lo[k]), o[k]);
-    dh[k] = hn::Sub(hn::Set(d, box.hi[k]), o[k]);
-    inv[k] = hn::Div(one, dir[k]);
-    hn::Store(inv[k], d, p->inv[k] + base);
-    // reach = Max(reach, Max(|dl|, |dh|)), Max(a, b) = a > b ? a : b.
-    depth[k] = hn::Max(hn::Abs(dl[k]), hn::Abs(dh[k]));
-    reach = hn::Max(reach, depth[k]);
-  }
-  const V delta = hn::Mul(hn::Set(d, ray_setup::kSpatialTol), reach);
-  hn::Store(delta, d, p->delta + base);
-  V lo = hn::Load(d, p->tmin + base), hi = hn::Load(d, p->tmax + base);
-  for (int k = 0; k < 3; ++k) {
-    const V tol = hn::Mul(delta, hn::Abs(inv[k]));
-    hn::Store(tol, d, p->tol[k] + base);
-    const V tn = hn::Mul(dl[k], inv[k]), tf = hn::Mul(dh[k], inv[k]);
-    V t0 = hn::Min(tf, tn), t1 = hn::Max(tn, tf);
-    t0 = hn::Sub(t0, hn::Add(hn::Mul(hn::Abs(t0), pad), tol));
-    t1 = hn::Add(t1, hn::Add(hn::Mul(hn::Abs(t1), pad), tol));
-    lo = hn::Max(t0, lo);
-    hi = hn::Min(t1, hi);
-  }
-  hn::Store(lo, d, p->t_entry + base);
-  hn::Store(hi, d, p->t_exit + base);
-  // WatertightAxes: kz the largest |d| (ties to the lower axis), kx and ky
-  // the next two cyclically, swapped when d[kz] < 0.
-  const V ax = hn::Abs(dir[0]), ay = hn::Abs(dir[1]), az = hn::Abs(dir[2]);
-  const auto on_x = hn::And(hn::Ge(ax, ay), hn::Ge(ax, az));
-  const auto on_y = hn::AndNot(hn::Ge(ax, ay), hn::Ge(ay, az));
-  const auto pick = [&](const V v[3], int kx_of_x, int kx_of_y, int kx_of_z) {
-    return hn::IfThenElse(on_x, v[kx_of_x], hn::IfThenElse(on_y, v[kx_of_y], v[kx_of_z]));
-  };
-  const V den = pick(dir, 0, 1, 2);
-  const auto flip = hn::Lt(den, hn::Zero(d));
-  const V dx0 = pick(dir, 1, 2, 0), dy0 = pick(dir, 2, 0, 1);
-  const V ox0 = pick(o, 1, 2, 0), oy0 = pick(o, 2, 0, 1);
-  const V sx = hn::Div(hn::IfThenElse(flip, dy0, dx0), den);
-  const V sy = hn::Div(hn::IfThenElse(flip, dx0, dy0), den);
-  hn::Store(sx, d, p->sx + base);
-  hn::Store(sy, d, p->sy + base);
-  hn::Store(hn::Div(one, den), d, p->sz + base);
-  hn::Store(hn::IfThenElse(flip, oy0, ox0), d, p->ox + base);
-  hn::Store(hn::IfThenElse(flip, ox0, oy0), d, p->oy + base);
-  hn::Store(pick(o, 0, 1, 2), d, p->oz + base);
-  const V depth_kz = pick(depth, 0, 1, 2);
-  hn::Store(hn::Mul(hn::Set(d, ray_setup::kHitSlack), hn::Div(depth_kz, hn::Abs(den))), d,
-            p->slack + base);
-  // ShearWeight: FMax(|s|, m) = |s| > m ? |s| : m for each shear.
-  const V min_shear = hn::Set(d, watertight_internal::kEdgeBoundMinShear);
-  hn::Store(hn::Add(hn::Max(hn::Abs(sx), min_shear), hn::Max(hn::Abs(sy), min_shear)), d,
-            p->shear_weight + base);
-  // The key: sign bits of the direction and kz.
-  const hn::RebindToSigned<D> di;
-  const auto zero_i = hn::Zero(di);
-  const uint32_t neg[3] = {Bits(di, hn::Lt(hn::BitCast(di, dir[0]), zero_i)),
-                           Bits(di, hn::Lt(hn::BitCast(di, dir[1]), zero_i)),
-                           Bits(di, hn::Lt(hn::BitCast(di, dir[2]), zero_i))};
-  const uint32_t x_bits = Bits(d, on_x), y_bits = Bits(d, on_y);
-  for (size_t i = 0; i < hn::Lanes(d); ++i) {
-    const int kz = (x_bits >> i) & 1 ? 0 : (y_bits >> i) & 1 ? 1 : 2;
-    p->key[base + i] = static_cast<uint8_t>(((neg[0] >> i) & 1) | ((neg[1] >> i) & 1) << 1 |
-                                            ((neg[2] >> i) & 1) << 2 | kz << 3);
-  }
-  return Bits(d, hn::Le(lo, hi));
-}
-
-uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p) {
-  const hn::ScalableTag<float> d;
-  const size_t n = hn::Lanes(d);
-  uint32_t live = 0;
-  for (size_t base = 0; base < kLanes; base += n) live |= SetUpChunk(d, box, base, p) << base;
-  return live;
-}
-
 void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit,
                     Hit* best) {
   const hn::ScalableTag<float> d;
@@ -388,12 +291,7 @@ namespace kdtree {
 namespace packet_internal {
 
 HWY_EXPORT(TraceGroupImpl);
-HWY_EXPORT(SetUpLanesImpl);
 HWY_EXPORT(KernelTargetImpl);
-
-uint32_t SetUpLanes(const AABB& box, PacketRays* p) {
-  return HWY_DYNAMIC_DISPATCH(SetUpLanesImpl)(box, p);
-}
 
 void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best) {
   HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, any_hit, best);
