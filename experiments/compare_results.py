@@ -4,7 +4,8 @@ matrix): every non-timing statistic must be equal for every (scene, variant).
 
     /usr/bin/python3 experiments/compare_results.py A/kdtree.jsonl B/kdtree.jsonl
 
-Timings (T_B, T_R, perf, seconds, rays per second, runs, wall time) and
+Timings (T_B, T_R, perf, seconds, rays per second, runs, wall time, the
+paired ratios to Embree) and
 provenance (node, commit, CPU, job ids, how many jobs ran at once) are only
 reported, never compared.
 Exit 0 when every pair agrees and both files hold the same set of successful
@@ -16,7 +17,7 @@ import sys
 
 # Keys whose values legitimately differ between two runs.
 TIMING_WORDS = ("T_B", "T_R", "perf", "seconds", "_s", "per_s", "runs",
-                "wall", "time", "date")
+                "wall", "time", "date", "paired_ratio")
 PROVENANCE = {"node", "backend", "commit", "git_commit", "cpu", "job", "host",
               "command", "error", "out", "png", "image", "dump", "build_flags",
               "mesh", "hostname", "threads_available", "load",
