@@ -210,28 +210,39 @@ uint64_t PrimaryPackets(const Frame& f, std::vector<Hit>* hits) {
   });
 }
 
+// f(y, p, hit, surface point) over the pixels with a primary hit, one at a
+// time (whole rows when recording); returns the sum of what f returns.
+template <class F>
+uint64_t ForHitPixels(const Frame& f, bool rows, const std::vector<Hit>& hits, const F& body) {
+  return ForPixels(f.w, f.h, f.threads, f.tile, rows, [&](int y, int x0, int x1) {
+    uint64_t sum = 0;
+    for (int x = x0; x < x1; ++x) {
+      const size_t p = static_cast<size_t>(y) * f.w + x;
+      const Hit& hit = hits[p];
+      if (!hit.hit()) continue;
+      sum += body(y, p, hit, MakeSurfacePoint(f.soup, f.camera.PrimaryRay(x, y), hit));
+    }
+    return sum;
+  });
+}
+
 // 2. Shadow rays, one per primary hit and light, one at a time: occluded[p *
 // n_lights + l]; returns the occluded count.
 template <class Sink>
 uint64_t ShadowRays(const Frame& f, Sink sink, const std::vector<Hit>& hits,
                     std::vector<uint8_t>* occluded) {
-  return ForPixels(f.w, f.h, f.threads, f.tile, Sink::kOn, [&](int y, int x0, int x1) {
-    uint64_t blocked = 0;
-    for (int x = x0; x < x1; ++x) {
-      const size_t p = static_cast<size_t>(y) * f.w + x;
-      const Hit& hit = hits[p];
-      if (!hit.hit()) continue;
-      const SurfacePoint sp = MakeSurfacePoint(f.soup, f.camera.PrimaryRay(x, y), hit);
-      for (int l = 0; l < f.n_lights; ++l) {
-        const Ray ray = ShadowRay(sp, f.view.lights[l].position);
-        const bool occ = f.tracer.Occluded(ray, f.Origin(hit));
-        (*occluded)[p * f.n_lights + l] = occ;
-        blocked += occ;
-        sink.Secondary(y, RayKind::kShadow, p, l, ray, occ);
-      }
-    }
-    return blocked;
-  });
+  return ForHitPixels(f, Sink::kOn, hits,
+                      [&](int y, size_t p, const Hit& hit, const SurfacePoint& sp) {
+                        uint64_t blocked = 0;
+                        for (int l = 0; l < f.n_lights; ++l) {
+                          const Ray ray = ShadowRay(sp, f.view.lights[l].position);
+                          const bool occ = f.tracer.Occluded(ray, f.Origin(hit));
+                          (*occluded)[p * f.n_lights + l] = occ;
+                          blocked += occ;
+                          sink.Secondary(y, RayKind::kShadow, p, l, ray, occ);
+                        }
+                        return blocked;
+                      });
 }
 
 // 2. Shadow rays in packets: per 4x4 block and light, the shadow rays of the
@@ -273,25 +284,19 @@ uint64_t ShadowPackets(const Frame& f, const std::vector<Hit>& hits,
 template <class Sink>
 uint64_t AoRays(const Frame& f, Sink sink, const std::vector<Hit>& hits,
                 std::vector<uint16_t>* open_count) {
-  return ForPixels(f.w, f.h, f.threads, f.tile, Sink::kOn, [&](int y, int x0, int x1) {
-    uint64_t blocked = 0;
-    for (int x = x0; x < x1; ++x) {
-      const size_t p = static_cast<size_t>(y) * f.w + x;
-      const Hit& hit = hits[p];
-      if (!hit.hit()) continue;
-      const SurfacePoint sp = MakeSurfacePoint(f.soup, f.camera.PrimaryRay(x, y), hit);
-      int open = 0;
-      for (int s = 0; s < f.ao_samples; ++s) {
-        const Ray ray = AoRay(sp, static_cast<uint32_t>(p), s, f.view.ao.distance);
-        const bool occ = f.tracer.Occluded(ray, f.Origin(hit));
-        open += !occ;
-        sink.Secondary(y, RayKind::kAo, p, s, ray, occ);
-      }
-      (*open_count)[p] = static_cast<uint16_t>(open);
-      blocked += f.ao_samples - open;
-    }
-    return blocked;
-  });
+  return ForHitPixels(f, Sink::kOn, hits,
+                      [&](int y, size_t p, const Hit& hit, const SurfacePoint& sp) {
+                        int open = 0;
+                        for (int s = 0; s < f.ao_samples; ++s) {
+                          const Ray ray =
+                              AoRay(sp, static_cast<uint32_t>(p), s, f.view.ao.distance);
+                          const bool occ = f.tracer.Occluded(ray, f.Origin(hit));
+                          open += !occ;
+                          sink.Secondary(y, RayKind::kAo, p, s, ray, occ);
+                        }
+                        (*open_count)[p] = static_cast<uint16_t>(open);
+                        return static_cast<uint64_t>(f.ao_samples - open);
+                      });
 }
 
 // 4. Shading: the image from the hits, occlusion flags and AO counts.
