@@ -79,8 +79,9 @@ uint32_t SetUpLanes(const AABB& box, PacketRays* p);
 
 // Traces the group's lanes through tree (which has the leaf layout) and
 // writes best[i] for each (closest hit, or with any_hit the first hit found;
-// best[i].t must hold ray i's tmax on entry). best has kLanes entries. Chosen at run time for the CPU
-// (Highway's dynamic dispatch: ray_packet_kernel.cc).
+// best[i].t must hold ray i's tmax on entry); best has kLanes entries.
+// Chosen at run time for the CPU (Highway's dynamic dispatch:
+// ray_packet_kernel.cc).
 void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best);
 
 // The Highway target TraceGroup runs on now ("AVX3", "AVX2", "SSE4", ...).

@@ -120,6 +120,20 @@ void TraceLive(const KdTree& tree, const PacketRays& p, bool any_hit, Hit* best)
   }
 }
 
+
+// The packet's rays, set up and traced (any_hit: Occluded's search);
+// best[i] for i < n, a miss for a ray that does not reach the tree. The
+// kernel reads and writes whole vectors of lanes, hence a full packet.
+void TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
+                 bool any_hit, Hit (&best)[kRayPacketSize]) {
+  PacketRays p;
+  Prepare(tree, rays, n, origins, &p);
+  for (int i = 0; i < n; ++i) {
+    if (p.live & (1u << i)) best[i].t = p.tmax[i];
+  }
+  if (p.live != 0) TraceLive(tree, p, any_hit, best);
+}
+
 }  // namespace
 
 bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options) {
@@ -136,14 +150,8 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
   }
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = options.origin_tri;
-  PacketRays p;
-  Prepare(tree, rays, n, origins, &p);
-  // The kernel reads and writes whole vectors of lanes: a full packet.
   Hit best[kRayPacketSize];
-  for (int i = 0; i < n; ++i) {
-    if (p.live & (1u << i)) best[i].t = p.tmax[i];
-  }
-  if (p.live != 0) TraceLive(tree, p, false, best);
+  TracePacket(tree, rays, n, origins, false, best);
   for (int i = 0; i < n; ++i) {
     hits[i] = best[i];
     if (!hits[i].hit()) hits[i].t = INFINITY;
@@ -164,14 +172,11 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
   // The packet path is the watertight test's (TreeSupportsPackets), where the
   // origin triangle may be skipped.
   uint32_t origins[kRayPacketSize];
-  for (int i = 0; i < n; ++i) origins[i] = origin_tris != nullptr ? origin_tris[i] : options.origin_tri;
-  PacketRays p;
-  Prepare(tree, rays, n, origins, &p);
-  Hit hits[kRayPacketSize];
   for (int i = 0; i < n; ++i) {
-    if (p.live & (1u << i)) hits[i].t = p.tmax[i];
+    origins[i] = origin_tris != nullptr ? origin_tris[i] : options.origin_tri;
   }
-  if (p.live != 0) TraceLive(tree, p, true, hits);
+  Hit hits[kRayPacketSize];
+  TracePacket(tree, rays, n, origins, true, hits);
   for (int i = 0; i < n; ++i) occluded[i] = hits[i].hit();
 }
 
