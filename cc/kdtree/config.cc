@@ -1,7 +1,11 @@
 #include "cc/kdtree/config.h"
 
+#include <optional>
+#include <vector>
+
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 
 namespace kdtree {
 
@@ -132,6 +136,60 @@ Config Binning(int bins, bool driving) {
   c.use_pruning = false;
   return c;
 }
+
+// Beyond the report: the full SAH of Wald & Havran 2006 (config.h), the
+// presets named sah-*; nullopt for any other name.
+std::optional<Config> SahPreset(const std::string& name) {
+  Config s = Binning(32, false);
+  s.max_leaf_size = 1;
+  s.full_sah = true;
+  s.auto_depth = true;
+  if (name == "sah-binned-32") return s;
+  if (name == "sah-packet-binned" || name == "sah-packet-binned-cp") {
+    // sah-packet's cost model (packets of 4, K_T 45) with the report's
+    // cheapest split search, 16 bins on the driving axis only: the fast
+    // builds. The cost termination stops where a packet of 4 no longer pays
+    // for a level, so the trees hold a sixth to a quarter of
+    // binning-8-driving's nodes and 40-50 % of its references, and most
+    // levels of the build see fewer. Measured (build_bench, one thread):
+    // 1.2-1.9x faster builds than binning-8-driving on the five scenes of
+    // 1.5-2.9 M triangles, about as fast on asian-dragon (7.2 M, a dense
+    // scan: 2 references per triangle, 25 levels on average); renders
+    // 1.24-1.49x faster on bunny, rungholt-1m and hairball-1m (render_bench
+    // --envs, same rays). -cp adds the report's clipping and pruning.
+    s.use_driving_axis = true;
+    s.bins = 16;
+    s.sah_packet = 4;
+    s.traversal_cost = 45.0;
+    s.use_clipping = s.use_pruning = name == "sah-packet-binned-cp";
+    return s;
+  }
+  s.use_clipping = s.use_pruning = true;
+  if (name == "sah-sweep") {
+    s.split_method = Config::SplitMethod::kSweep;
+    return s;
+  }
+  s.split_method = Config::SplitMethod::kHybrid;
+  if (name == "sah-hybrid") return s;
+  if (name == "sah-packet") {
+    // K_T 45 (K_I 20): tuned with render_bench --envs, sweeps of K_T 10-90
+    // on 8 scenes, re-checked with paired ratios (per round, 7 rounds, a
+    // control tree at 0.999): K_T 15 renders at 0.95x of K_T 45's speed,
+    // 30 at 1.01x (a plateau with 45), 60 at 0.98x. A leaf of up to 4
+    // references costs one packet test, so a step down the tree is worth
+    // about two of them.
+    s.sah_packet = 4;
+    s.traversal_cost = 45.0;
+    return s;
+  }
+  if (name == "sah-perfect") {
+    s.perfect_splits = true;
+    s.collapse = true;
+    return s;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 absl::StatusOr<Config> Preset(const std::string& name) {
@@ -154,68 +212,18 @@ absl::StatusOr<Config> Preset(const std::string& name) {
     c.use_clipping = c.use_pruning = true;
     return c;
   }
-  if (name.rfind("sah-", 0) == 0) {
-    // Beyond the report: the full SAH of Wald & Havran 2006 (config.h).
-    Config s = Binning(32, false);
-    s.max_leaf_size = 1;
-    s.full_sah = true;
-    s.auto_depth = true;
-    if (name == "sah-binned-32") return s;
-    if (name == "sah-packet-binned" || name == "sah-packet-binned-cp") {
-      // sah-packet's cost model (packets of 4, K_T 45) with the report's
-      // cheapest split search, 16 bins on the driving axis only: the fast
-      // builds. The cost termination stops where a packet of 4 no longer pays
-      // for a level, so the trees hold a sixth to a quarter of
-      // binning-8-driving's nodes and 40-50 % of its references, and most
-      // levels of the build see fewer. Measured (build_bench, one thread):
-      // 1.2-1.9x faster builds than binning-8-driving on the five scenes of
-      // 1.5-2.9 M triangles, about as fast on asian-dragon (7.2 M, a dense
-      // scan: 2 references per triangle, 25 levels on average); renders
-      // 1.24-1.49x faster on bunny, rungholt-1m and hairball-1m (render_bench
-      // --envs, same rays). -cp adds the report's clipping and pruning.
-      s.use_driving_axis = true;
-      s.bins = 16;
-      s.sah_packet = 4;
-      s.traversal_cost = 45.0;
-      s.use_clipping = s.use_pruning = name == "sah-packet-binned-cp";
-      return s;
-    }
-    s.use_clipping = s.use_pruning = true;
-    if (name == "sah-sweep") {
-      s.split_method = Config::SplitMethod::kSweep;
-      return s;
-    }
-    s.split_method = Config::SplitMethod::kHybrid;
-    if (name == "sah-hybrid") return s;
-    if (name == "sah-packet") {
-      // K_T 45 (K_I 20): tuned with render_bench --envs, sweeps of K_T 10-90
-      // on 8 scenes, re-checked with paired ratios (per round, 7 rounds, a
-      // control tree at 0.999): K_T 15 renders at 0.95x of K_T 45's speed,
-      // 30 at 1.01x (a plateau with 45), 60 at 0.98x. A leaf of up to 4
-      // references costs one packet test, so a step down the tree is worth
-      // about two of them.
-      s.sah_packet = 4;
-      s.traversal_cost = 45.0;
-      return s;
-    }
-    if (name == "sah-perfect") {
-      s.perfect_splits = true;
-      s.collapse = true;
-      return s;
-    }
-  }
+  if (std::optional<Config> s = SahPreset(name)) return *s;
   if (name == "pruning-seed") {
     Config p = Binning(32, false);
     p.use_pruning = true;
     p.seed_compatible = true;
     return p;
   }
-  return absl::NotFoundError(absl::StrCat("unknown preset '", name, "'; known: ",
-                                          "median-16-2, median-24-2, median-24-8, ",
-                                          "binning-8-driving, binning-8, binning-32, clipping, ",
-                                          "pruning, clipping-pruning, pruning-seed, sah-binned-32, ",
-                                          "sah-sweep, sah-hybrid, sah-perfect, sah-packet, sah-packet-binned, ",
-                                          "sah-packet-binned-cp"));
+  std::vector<std::string> known = PresetNames();
+  known.push_back("pruning-seed");
+  known.insert(known.end(), ExtraPresetNames().begin(), ExtraPresetNames().end());
+  return absl::NotFoundError(
+      absl::StrCat("unknown preset '", name, "'; known: ", absl::StrJoin(known, ", ")));
 }
 
 const std::vector<std::string>& ExtraPresetNames() {

@@ -71,25 +71,8 @@ class ClaimsTriangleZero : public Tracer {
 };
 
 RayRecord Record(const Ray& ray, RayKind kind, const Tracer& tracer) {
-  RayRecord rec;
-  rec.origin = ray.origin;
-  rec.dir = ray.dir;
-  rec.tmin = ray.tmin;
-  rec.tmax = ray.tmax;
-  rec.kind = kind;
-  if (kind == RayKind::kPrimary) {
-    const Hit h = tracer.Intersect(ray);
-    rec.hit = h.hit();
-    if (h.hit()) {
-      rec.tri = h.tri;
-      rec.t = h.t;
-      rec.u = h.u;
-      rec.v = h.v;
-    }
-  } else {
-    rec.hit = tracer.Occluded(ray);
-  }
-  return rec;
+  return kind == RayKind::kPrimary ? PrimaryRecord(ray, tracer.Intersect(ray))
+                                   : SecondaryRecord(ray, kind, tracer.Occluded(ray));
 }
 
 // A real shadow ray of the engine scene (pruning preset, manifest view): it

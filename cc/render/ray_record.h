@@ -44,6 +44,14 @@ struct RayRecord {
 };
 static_assert(sizeof(RayRecord) == 56, "RayRecord is the 56-byte dump record");
 
+// The record of `ray` with its result unset (hit = 0, tri = kNoHit).
+RayRecord RecordOf(const Ray& ray, RayKind kind, uint32_t pixel = 0, uint16_t light = 0);
+// The record of a primary ray and its closest hit.
+RayRecord PrimaryRecord(const Ray& ray, const Hit& hit, uint32_t pixel = 0);
+// The record of a shadow or AO ray and whether it is occluded.
+RayRecord SecondaryRecord(const Ray& ray, RayKind kind, bool occluded, uint32_t pixel = 0,
+                          uint16_t light = 0);
+
 }  // namespace kdtree
 
 #endif  // KDTREE_CC_RENDER_RAY_RECORD_H_

@@ -20,18 +20,6 @@ double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
-RayRecord MakeRecord(const Ray& r, RayKind kind, uint32_t pixel, uint16_t index) {
-  RayRecord rec;
-  rec.origin = r.origin;
-  rec.dir = r.dir;
-  rec.tmin = r.tmin;
-  rec.tmax = r.tmax;
-  rec.kind = kind;
-  rec.light = index;
-  rec.pixel = pixel;
-  return rec;
-}
-
 // Linear [0, 1] to gamma-1/2.2 bytes through a 4096-entry table (std::pow per
 // channel would cost ~10% of a fast render's T_R).
 uint8_t ToByte(float linear) {
@@ -124,7 +112,6 @@ void Append(std::vector<std::vector<RayRecord>>* rows, std::vector<RayRecord>* o
   }
 }
 
-
 // What every pass reads: the frame and the options.
 struct Frame {
   const TriangleSoup& soup;
@@ -156,20 +143,11 @@ struct RowRecorder {
   static constexpr bool kOn = true;
   std::vector<std::vector<RayRecord>>* rows;
   void Primary(int y, size_t p, const Ray& ray, const Hit& hit) {
-    RayRecord rec = MakeRecord(ray, RayKind::kPrimary, static_cast<uint32_t>(p), 0);
-    rec.hit = hit.hit();
-    if (hit.hit()) {
-      rec.tri = hit.tri;
-      rec.t = hit.t;
-      rec.u = hit.u;
-      rec.v = hit.v;
-    }
-    (*rows)[y].push_back(rec);
+    (*rows)[y].push_back(PrimaryRecord(ray, hit, static_cast<uint32_t>(p)));
   }
   void Secondary(int y, RayKind kind, size_t p, int index, const Ray& ray, bool occluded) {
-    RayRecord rec = MakeRecord(ray, kind, static_cast<uint32_t>(p), static_cast<uint16_t>(index));
-    rec.hit = occluded;
-    (*rows)[y].push_back(rec);
+    (*rows)[y].push_back(SecondaryRecord(ray, kind, occluded, static_cast<uint32_t>(p),
+                                         static_cast<uint16_t>(index)));
   }
 };
 
