@@ -6,6 +6,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_split.h"
 #include "cc/io/mesh_loader.h"
+#include "cc/scenes/assimp_mesh.h"
 #include "cc/scenes/ply.h"
 
 namespace kdtree {

@@ -26,6 +26,7 @@
 #include "cc/scenes/hairball.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/plant.h"
+#include "cc/scenes/assimp_mesh.h"
 #include "cc/scenes/ply.h"
 #include "cc/scenes/refine.h"
 #include "cc/scenes/subdivide.h"
