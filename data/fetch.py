@@ -39,9 +39,7 @@ cache, else 1 with a summary. data/cache/scenes/index.json lists what is there.
 import argparse
 import gzip
 import hashlib
-import io
 import json
-import math
 import os
 import shutil
 import struct
@@ -121,34 +119,6 @@ def source_key(entry):
 
 def scene_file(entry):
     return SCENES / f"{entry['name']}.{entry['format']}"
-
-
-# ---------------------------------------------------------------- cameras
-
-def camera_from_bounds(lo, hi, up_axis=1, framing="object", fov_deg=45.0):
-    """Default view: the bounding sphere fits a fov_deg view from the front.
-
-    Front is +z for y-up meshes and -y for z-up ones (Blender files); the
-    camera is raised by 15 degrees for objects, 35 for landscapes and
-    interiors. The point light is above-front-right, 1.5 radii up.
-    """
-    c = [(a + b) / 2 for a, b in zip(lo, hi)]
-    r = max(1e-6, math.dist(lo, hi) / 2)
-    up = [0.0, 0.0, 0.0]
-    up[up_axis] = 1.0
-    front = [0.0, 0.0, 1.0] if up_axis == 1 else [0.0, -1.0, 0.0]
-    side = [1.0, 0.0, 0.0]
-    elev = math.radians(15 if framing == "object" else 35)
-    d = r / math.sin(math.radians(fov_deg) / 2) * 1.05
-    direction = [math.cos(elev) * f + math.sin(elev) * u for f, u in zip(front, up)]
-
-    def rnd(v):
-        return [float(f"{x:.6g}") for x in v]
-
-    position = [ci + d * di for ci, di in zip(c, direction)]
-    light = [ci + r * (0.5 * s + 1.5 * u + 1.0 * f) for ci, s, u, f in zip(c, side, up, front)]
-    camera = {"position": rnd(position), "look_at": rnd(c), "up": up, "fov_deg": fov_deg}
-    return camera, {"position": rnd(light)}
 
 
 # ---------------------------------------------------------------- counting

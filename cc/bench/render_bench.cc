@@ -83,6 +83,7 @@
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
 #include "cc/render/renderer.h"
+#include "cc/render/framing.h"
 #include "cc/render/view.h"
 
 ABSL_FLAG(std::string, scenes, "bunny", "Comma-separated manifest scenes (fetched).");

@@ -250,23 +250,6 @@ std::string ViewToText(const View& view) {
   return out;
 }
 
-View AutoView(const AABB& bounds) {
-  const Vec3 c = bounds.Valid() ? (bounds.lo + bounds.hi) * 0.5f : Vec3();
-  const float r = bounds.Valid() ? std::fmax(1e-6f, Length(bounds.hi - bounds.lo) * 0.5f) : 1.0f;
-  const float fov = 45.0f;
-  const float kPi = 3.14159265358979f;
-  const float elev = 15.0f * kPi / 180.0f;
-  const float d = r / std::sin(fov * 0.5f * kPi / 180.0f) * 1.05f;
-  const Vec3 front(0, 0, 1), up(0, 1, 0), side(1, 0, 0);
-  View view;
-  view.camera.position = c + (front * std::cos(elev) + up * std::sin(elev)) * d;
-  view.camera.look_at = c;
-  view.camera.up = up;
-  view.camera.fov_deg = fov;
-  view.lights.push_back(PointLight{c + (side * 0.5f + up * 1.5f + front * 1.0f) * r});
-  return view;
-}
-
 absl::Status CheckSceneScale(const AABB& bounds) {
   if (!bounds.Valid()) return absl::InvalidArgumentError("the scene has no bounds (no triangles?)");
   double extent = 0, magnitude = 0;

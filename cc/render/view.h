@@ -80,13 +80,6 @@ absl::StatusOr<View> LoadViewFile(const std::string& path);
 // printing, which uses %.9g and so round-trips exactly).
 std::string ViewToText(const View& view);
 
-// A view framing `bounds` (y up): the bounding sphere fits a 45 degree view
-// from the +z side, the eye raised 15 degrees above the centre, 5% margin; one
-// point light above-front-right at centre + r (0.5, 1.5, 1.0) with r the
-// half diagonal. The same rule as data/fetch.py's camera_from_bounds for
-// objects, so a scene without a manifest camera looks the same either way.
-View AutoView(const AABB& bounds);
-
 // Whether rays in single precision can trace a scene of these bounds: its
 // largest extent must lie in [kMinSceneExtent, kMaxSceneExtent] (the
 // triangle tests multiply coordinate differences: below, products underflow

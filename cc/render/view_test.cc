@@ -135,23 +135,5 @@ TEST(ViewParser, ADirectoryIsRefusedByName) {
   EXPECT_EQ(v.status().message(), std::string(dir) + ": the view file is a directory");
 }
 
-TEST(AutoView, FramesTheBoxFromAboveFront) {
-  const AABB box(Vec3(-1, 0, -2), Vec3(3, 2, 2));
-  const View v = AutoView(box);
-  ASSERT_TRUE(v.Validate("auto").ok());
-  EXPECT_EQ(v.camera.look_at, Vec3(1, 1, 0));
-  EXPECT_GT(v.camera.position.z, box.hi.z);      // +z side, outside the box
-  EXPECT_GT(v.camera.position.y, 1.0f);          // slightly above the centre
-  EXPECT_NEAR(v.camera.position.x, 1.0f, 1e-5f);
-  EXPECT_EQ(v.camera.fov_deg, 45.0f);
-  ASSERT_EQ(v.lights.size(), 1u);
-  EXPECT_GT(v.lights[0].position.y, box.hi.y);   // above
-  EXPECT_GT(v.lights[0].position.z, 0.0f);       // in front
-  // The bounding sphere fits the view: its angular radius is below 22.5 deg.
-  const float r = Length(box.hi - box.lo) * 0.5f;
-  const float d = Length(v.camera.position - v.camera.look_at);
-  EXPECT_LT(r / d, std::sin(22.5f * 3.14159265f / 180.0f));
-}
-
 }  // namespace
 }  // namespace kdtree

@@ -59,6 +59,7 @@
 #include "cc/render/camera.h"
 #include "cc/render/manifest.h"
 #include "cc/render/secondary_rays.h"
+#include "cc/render/framing.h"
 #include "cc/render/view.h"
 #include "cc/robust/preset_check.h"
 #include "nlohmann/json.hpp"

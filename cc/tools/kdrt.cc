@@ -60,6 +60,7 @@
 #include "cc/render/renderer.h"
 #include "cc/render/cost_image.h"
 #include "cc/render/traversal_counts.h"
+#include "cc/render/framing.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
 #include "cc/tools/kdrt_limits.h"
