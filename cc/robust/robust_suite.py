@@ -56,6 +56,11 @@ import subprocess
 import sys
 import time
 
+try:  # under bazel (the package path) or as a script (its directory first)
+    from cc.robust import robust_cost_runs as cost
+except ImportError:
+    import robust_cost_runs as cost
+
 # (hard case number, binary, what it checks); the binaries are data of the
 # py_binary, so `bazel build` builds them in the same configuration.
 CASES = [
@@ -71,7 +76,6 @@ CASES = [
 ]
 
 PREFIX = "ROBUST_JSON "
-GENERATED = "generated"  # the cost bench's own scene (every preset)
 SUITE_TARGET = "//cc/robust:robust_suite"  # builds every case binary
 COST_TARGET = "//cc/robust:robust_cost_bench"
 
@@ -132,24 +136,6 @@ def short_tree(tree):
     return (tree or "unknown")[:12]
 
 
-def read_jsonl(path):
-    """The records of a JSON-lines file ([] when it does not exist); a line
-    that does not parse is skipped."""
-    out = []
-    if not os.path.exists(path):
-        return out
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            line = line.strip()
-            if not line:
-                continue
-            try:
-                out.append(json.loads(line))
-            except ValueError:
-                continue
-    return out
-
-
 # --- suite -------------------------------------------------------------------
 
 def parse_records(stdout):
@@ -168,7 +154,7 @@ def suite_done(out_path, source_tree, profile, cases=None, ray_stride=1):
     cases = CASES if cases is None else cases
     if not source_tree:
         return None
-    recs = read_jsonl(out_path)
+    recs = cost.read_jsonl(out_path)
     suites = [r for r in recs if r.get("kind") == "suite"]
     if not suites:
         return None
@@ -209,7 +195,7 @@ def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
               file=log, flush=True)
     # Longest first (by the last run's times in out_path), so that no long
     # case starts last; the records keep the cases' order.
-    last = {r.get("binary"): r.get("seconds") or 0 for r in read_jsonl(out_path)
+    last = {r.get("binary"): r.get("seconds") or 0 for r in cost.read_jsonl(out_path)
             if r.get("kind") == "binary"}
     order = sorted(range(len(cases)), key=lambda i: -last.get(cases[i][1], 0))
     with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
@@ -259,105 +245,15 @@ def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
     return failed
 
 
-# --- cost --------------------------------------------------------------------
-
-def profile_scenes(manifest_path, index_path, profile):
-    """Names of the profile's scenes that are in the fetched index."""
-    with open(manifest_path, encoding="utf-8") as f:
-        manifest = json.load(f)
-    fetched = {}
-    if os.path.exists(index_path):
-        with open(index_path, encoding="utf-8") as f:
-            fetched = json.load(f).get("scenes", {})
-    return [s["name"] for s in manifest["scenes"]
-            if profile in s.get("profiles", []) and s["name"] in fetched]
-
-
-def generated_presets(matrix_path):
-    """"default", then the matrix's variants and beyond_variants."""
-    with open(matrix_path, encoding="utf-8") as f:
-        matrix = json.load(f)
-    return (["default"] + list(matrix["variants"])
-            + list(matrix.get("beyond_variants", [])))
-
-
-def done_runs(cost_out, source_tree, repeats=1):
-    """(scene, preset) pairs cost_out already holds from source_tree (not
-    None), from a timing build, with paired rounds, at least `repeats` of
-    them. Records of other code, of the old unpaired format or without
-    provenance do not count."""
-    done = set()
-    if not source_tree:
-        return done
-    for rec in read_jsonl(cost_out):
-        prov = rec.get("provenance")
-        if (isinstance(prov, dict) and prov.get("source_tree") == source_tree
-                and prov.get("timing_build")
-                and len(rec.get("paired_ratio_runs") or []) >= repeats
-                and rec.get("scene") and rec.get("preset")):
-            done.add((rec["scene"], rec["preset"]))
-    return done
-
-
-def cost_jobs(scenes, presets_generated, done):
-    """[(scene, presets still to run)] for the profile's scenes (default
-    preset) and the generated scene (every preset); finished ones left out."""
-    jobs = [(s, ["default"]) for s in scenes]
-    jobs.append((GENERATED, list(presets_generated)))
-    out = []
-    for scene, presets in jobs:
-        todo = [p for p in presets if (scene, p) not in done]
-        if todo:
-            out.append((scene, todo))
-    return out
-
-
-def run_cost(bench, cost_out, scenes, repeats=5, log=None,
-             presets_generated=None, source_tree=None):
-    """Runs the cost bench per scene (default preset) and on the generated
-    scene (every preset), skipping (scene, preset) runs of source_tree
-    already in cost_out; returns failures."""
-    log = log or sys.stderr
-    os.makedirs(os.path.dirname(os.path.abspath(cost_out)), exist_ok=True)
-    if presets_generated is None:  # the bench's own list
-        listed = subprocess.run([bench, "--list_presets"],
-                                stdout=subprocess.PIPE,
-                                universal_newlines=True, check=True).stdout
-        presets_generated = [p for p in listed.strip().split(",") if p]
-    done = done_runs(cost_out, source_tree, repeats)
-    jobs = cost_jobs(scenes, presets_generated, done)
-    skipped = len(scenes) + len(presets_generated) - sum(len(p) for _, p in jobs)
-    if skipped:
-        print("robust_suite: cost: %d (scene, preset) runs of source tree %s "
-              "already in %s, not rerun" % (skipped, short_tree(source_tree),
-                                            cost_out), file=log, flush=True)
-    failed = 0
-    for scene, presets in jobs:
-        args = [] if scene == GENERATED else ["--scene", scene]
-        print("robust_suite: cost on %s (%s)" % (scene, ",".join(presets)),
-              file=log, flush=True)
-        proc = subprocess.run([bench] + args + [
-            "--presets", ",".join(presets), "--out", cost_out,
-            "--repeats", str(repeats)], check=False)
-        if proc.returncode != 0:
-            failed += 1
-            print("robust_suite: cost bench failed on %s (exit %d)"
-                  % (scene, proc.returncode), file=log)
-    return failed
-
-
 # --- plan and main -----------------------------------------------------------
 
 def presets_for_generated(args):
     """The generated scene's presets: --matrix's, else the bench's own list
     (robust_cost_bench --list_presets)."""
     if os.path.exists(args.matrix):
-        return generated_presets(args.matrix)
+        return cost.generated_presets(args.matrix)
     if args.cost_bench:
-        listed = subprocess.run([args.cost_bench, "--list_presets"],
-                                stdout=subprocess.PIPE,
-                                universal_newlines=True, check=True).stdout
-        return [p for p in listed.strip().split(",") if p]
+        return cost.list_presets(args.cost_bench)
     raise ValueError("%s not found: pass --matrix, or --cost_bench to ask the "
                      "bench for its presets" % args.matrix)
 
@@ -382,14 +278,14 @@ def plan(args, identity, log=None):
     run = not args.skip_suite and suite is None
     jobs = []
     if args.cost:
-        scenes = profile_scenes(args.manifest, args.index, args.profile)
-        jobs = cost_jobs(scenes, presets_for_generated(args),
-                         done_runs(args.cost_out, tree, args.repeats))
+        scenes = cost.profile_scenes(args.manifest, args.index, args.profile)
+        jobs = cost.cost_jobs(scenes, presets_for_generated(args),
+                              cost.done_runs(args.cost_out, tree, args.repeats))
         if not jobs:
             print("robust_suite: %s already holds every cost run of profile "
                   "%s (%d scenes + %s) of source tree %s with >= %d rounds: "
                   "not rebuilt or rerun" % (args.cost_out, args.profile,
-                                            len(scenes), GENERATED,
+                                            len(scenes), cost.GENERATED,
                                             short_tree(tree), args.repeats),
                   file=log, flush=True)
     return run, jobs
@@ -449,8 +345,8 @@ def main(argv=None, identity=None):
                             profile=args.profile, jobs=args.jobs,
                             ray_stride=args.ray_stride)
     if args.cost_bench and jobs:
-        scenes = profile_scenes(args.manifest, args.index, args.profile)
-        failed += run_cost(args.cost_bench, args.cost_out, scenes,
+        scenes = cost.profile_scenes(args.manifest, args.index, args.profile)
+        failed += cost.run_cost(args.cost_bench, args.cost_out, scenes,
                            repeats=args.repeats,
                            presets_generated=presets_for_generated(args),
                            source_tree=identity.get("source_tree"))

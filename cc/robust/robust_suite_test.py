@@ -11,7 +11,7 @@ import tempfile
 import unittest
 import unittest.mock
 
-from cc.robust import robust_suite
+from cc.robust import robust_cost_runs, robust_suite
 
 TREE = "a" * 40
 IDENT = {"commit": "c" * 40, "dirty": False, "source_tree": TREE}
@@ -202,15 +202,15 @@ class SuiteTest(unittest.TestCase):
 
     def test_cost_runs_what_this_code_has_not_run(self):
         manifest, index, matrix = self.scenes_files()
-        scenes = robust_suite.profile_scenes(manifest, index, "quick")
+        scenes = robust_cost_runs.profile_scenes(manifest, index, "quick")
         self.assertEqual(scenes, ["s1"])
-        presets = robust_suite.generated_presets(matrix)
+        presets = robust_cost_runs.generated_presets(matrix)
         self.assertEqual(presets, ["default", "v1", "v2", "b1"])
         cost = os.path.join(self.dir, "cost.jsonl")
         bench, _ = self.bench()
 
         def run(repeats=3):
-            return robust_suite.run_cost(bench, cost, scenes, repeats=repeats,
+            return robust_cost_runs.run_cost(bench, cost, scenes, repeats=repeats,
                                          log=self.log,
                                          presets_generated=presets,
                                          source_tree=TREE)
@@ -245,7 +245,7 @@ class SuiteTest(unittest.TestCase):
         with open(cost, "w") as f:
             f.write(json.dumps({"scene": "s1", "preset": "default",
                                 "mode": "fast", "seconds": 1.0}) + "\n")
-        self.assertEqual(robust_suite.done_runs(cost, TREE), set())
+        self.assertEqual(robust_cost_runs.done_runs(cost, TREE), set())
 
     def main(self, *args):
         manifest, index, matrix = self.scenes_files()
