@@ -51,6 +51,14 @@ struct StackEntry {
   float t_entry, t_exit;
 };
 
+// The single-ray traversal: set-up, then a loop of three parts (the descent
+// to a leaf, the leaf's triangles, the pop of the next node). Longer than the
+// project's 80 lines on purpose: the three parts share the ray's set-up, the
+// interval, the stack, the mailbox and the best hit, a dozen values the loop
+// keeps in registers; as separate functions they would take them by
+// reference, which keeps them in memory unless every call is inlined. The
+// packet kernel's TraceChunk (ray_packet_kernel.cc) is one function for the
+// same reason.
 template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox>
 Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
              TraversalCounters* counters) {
