@@ -11,7 +11,9 @@ anything it reads) leaves every tree byte for byte as it was.
 build_bench builds each (scene, preset) once per thread count, untimed for
 this purpose (one build, no warm-up, no brute-force rays), and itself fails
 when two builds of one preset differ; this script keeps
-{"scene/preset/threads": fingerprint}. --compare exits 0 when both files hold
+{"scene/preset/threads": fingerprint}, or "failed: <build_bench's last
+line>" for a build that fails (pruning-seed, the seed's float pruning, fails
+its validation on the engine). --compare exits 0 when both files hold
 the same keys with the same fingerprints, 1 otherwise, listing the
 differences.
 """
@@ -48,16 +50,24 @@ def collect(args):
     with tempfile.TemporaryDirectory() as tmp:
         records = Path(tmp) / "builds.jsonl"
         for scene in args.scenes.split(","):
-            cmd = [args.build_bench, f"--mesh={scene_path(scene)}", f"--name={scene}",
-                   f"--presets={args.presets}", f"--threads={args.threads}", "--repeats=1",
-                   "--warmup=0", "--check_rays=0", f"--out={records}"]
             print(f"tree_fingerprints: {scene} ...", file=sys.stderr, flush=True)
-            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=REPO)
+            for preset in args.presets.split(","):
+                cmd = [args.build_bench, f"--mesh={scene_path(scene)}", f"--name={scene}",
+                       f"--presets={preset}", f"--threads={args.threads}", "--repeats=1",
+                       "--warmup=0", "--check_rays=0", f"--out={records}"]
+                proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                      text=True, cwd=REPO)
+                if proc.returncode != 0:  # kept as a result: it must fail the same way
+                    why = (proc.stdout.strip().splitlines() or ["?"])[-1]
+                    for threads in args.threads.split(","):
+                        out[f"{scene}/{preset}/{threads}"] = "failed: " + why
         for line in records.read_text().splitlines():
             r = json.loads(line)
             out[f"{r['scene']}/{r['preset']}/{r['threads']}"] = r["tree_fingerprint"]
     Path(args.out).write_text(json.dumps(out, indent=1, sort_keys=True) + "\n")
-    print(f"tree_fingerprints: {len(out)} trees -> {args.out}", file=sys.stderr)
+    failed = sum(1 for v in out.values() if v.startswith("failed"))
+    print(f"tree_fingerprints: {len(out)} trees ({failed} builds failed) -> {args.out}",
+          file=sys.stderr)
 
 
 def compare(a_path, b_path):
