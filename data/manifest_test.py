@@ -14,6 +14,7 @@ HERE = Path(__file__).absolute().parent
 sys.path.insert(0, str(HERE))
 
 import fetch  # noqa: E402  (data/fetch.py: the code that reads the manifest)
+import sources  # noqa: E402  (data/sources.py: where scenes come from)
 
 MANIFEST = HERE / "manifest.json"
 # The framing rule's tool (cc/render/framing.h): in the runfiles under bazel.
@@ -170,7 +171,7 @@ class ManifestTest(unittest.TestCase):
                         self.assertTrue(s["path"].endswith((".tar.gz", ".zip", ".pk3")))
                     if s["convert"] == "stk-track":  # a track's scene.xml -> PLY
                         self.assertEqual(s["package"], "supertuxkart-data")
-                        self.assertRegex(s["path"], r"^" + re.escape(fetch.STK_DATA)
+                        self.assertRegex(s["path"], r"^" + re.escape(sources.STK_DATA)
                                          + r"tracks/[a-z0-9_]+/scene\.xml$")
                         self.assertIsNone(s["member"])
                         self.assertEqual(s["format"], "ply")
@@ -303,7 +304,7 @@ class TeapotConverterTest(unittest.TestCase):
         js = ("exports.positions=[[0,0,0],[1,0,0],[0,1,0],[0,0,1]];"
               "exports.cells=[[0,1,2],[0,2,3]];")
         p = Path(os.environ.get("TEST_TMPDIR", "/tmp")) / "t.ply"
-        fetch.teapot_js_to_ply(js, p)
+        sources.teapot_js_to_ply(js, p)
         header, body = p.read_bytes().split(b"end_header\n")
         self.assertIn(b"element vertex 4", header)
         self.assertIn(b"element face 2", header)
