@@ -71,6 +71,7 @@
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
+#include "cc/bench/render_check.h"
 #include "cc/tools/paths.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
@@ -125,54 +126,14 @@ double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
   return r.empty() ? 0.0 : Median(r);
 }
 
-struct Entry {
+// A variant and its times.
+struct Entry : bench::RenderVariant {
   Entry(std::string n, const Tracer* t, bool p = false, bool s = false)
-      : name(std::move(n)), tracer(t), packets(p), skip_origin(s) {}
-  std::string name;
-  const Tracer* tracer;
-  bool packets;      // RenderOptions::packets
-  bool skip_origin;  // RenderOptions::skip_origin
+      : RenderVariant{std::move(n), t, p, s} {}
   std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
   std::vector<double> warmup;                    // untimed T_R before the rounds
   uint64_t rays = 0;
 };
-
-// Results of `tracer` on every record equal the recorded ones exactly (hit
-// flag; for primary rays also triangle, t, u, v).
-uint64_t ExactMismatches(const std::vector<RayRecord>& recs, const Tracer& tracer) {
-  uint64_t bad = 0;
-  for (const RayRecord& r : recs) {
-    if (r.kind == RayKind::kPrimary) {
-      const Hit h = tracer.Intersect(r.ray());
-      const bool same = h.hit() == (r.hit != 0) &&
-                        (!h.hit() || (h.tri == r.tri && h.t == r.t && h.u == r.u && h.v == r.v));
-      bad += !same;
-    } else {
-      bad += tracer.Occluded(r.ray()) != (r.hit != 0);
-    }
-  }
-  return bad;
-}
-
-// Brute-force check of every step-th record; returns the mismatches.
-uint64_t BruteForceMismatches(const std::vector<RayRecord>& recs, const BruteForce& bf, int count,
-                              uint64_t* checked) {
-  *checked = 0;
-  if (count <= 0 || recs.empty()) return 0;
-  const size_t step = std::max<size_t>(1, recs.size() / count);
-  uint64_t bad = 0;
-  for (size_t i = 0; i < recs.size(); i += step) {
-    const RayRecord& r = recs[i];
-    ++*checked;
-    if (r.kind == RayKind::kPrimary) {
-      const Hit h = bf.Intersect(r.ray());
-      bad += !(h.hit() == (r.hit != 0) && (!h.hit() || (h.tri == r.tri && h.t == r.t)));
-    } else {
-      bad += bf.Occluded(r.ray()) != (r.hit != 0);
-    }
-  }
-  return bad;
-}
 
 // The run's shared context: where its numbers come from, and the lock its
 // timed rounds hold.
@@ -258,45 +219,15 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
   const RenderResult recorded = Render(*soup, kd, view, rec_opt);
   Json variant_json = Json::object();
   for (const Entry& e : proto) {
-    const uint64_t bad = ExactMismatches(recorded.rays, *e.tracer);
+    uint64_t bad = 0;
+    if (absl::Status st = bench::CheckVariant(scene, *soup, view, ropt, recorded, e, &bad); !st.ok()) {
+      return st;
+    }
     variant_json[e.name] = bad;
-    if (bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd on ", bad, " rays"));
-    if (e.packets) {
-      // Packets: every primary hit bit for bit, the shadow count and the image
-      // (with shadow rays leaving their origin untested when the variant does).
-      RenderOptions po = ropt;
-      po.packets = true;
-      po.skip_origin = e.skip_origin;
-      const RenderResult r = Render(*soup, *e.tracer, view, po);
-      uint64_t differ = r.s_hit != recorded.s_hit || r.rgb != recorded.rgb;
-      for (size_t p = 0; p < r.primary_hits.size(); ++p) {
-        const Hit& a = r.primary_hits[p];
-        const Hit& b = recorded.primary_hits[p];
-        differ += !(a.tri == b.tri && a.t == b.t && a.u == b.u && a.v == b.v);
-      }
-      if (differ != 0) return absl::InternalError(absl::StrCat(scene, ": ", e.name, " packets differ from kd"));
-    }
-    if (e.skip_origin) {
-      // Every recorded shadow and AO ray, from its primary hit's triangle,
-      // and the image.
-      uint64_t differ = 0;
-      for (const RayRecord& rec : recorded.rays) {
-        if (rec.kind == RayKind::kPrimary) continue;
-        const uint32_t origin = recorded.primary_hits[rec.pixel].tri;
-        differ += e.tracer->Occluded(rec.ray(), origin) != (rec.hit != 0);
-      }
-      RenderOptions so = ropt;
-      so.skip_origin = true;
-      const RenderResult r = Render(*soup, *e.tracer, view, so);
-      differ += r.s_hit != recorded.s_hit || r.rgb != recorded.rgb;
-      if (differ != 0) {
-        return absl::InternalError(absl::StrCat(scene, ": ", e.name, " differs from kd"));
-      }
-    }
   }
   uint64_t checked = 0;
   const uint64_t bf_bad =
-      BruteForceMismatches(recorded.rays, bf, absl::GetFlag(FLAGS_check_rays), &checked);
+      bench::BruteForceMismatches(recorded.rays, bf, absl::GetFlag(FLAGS_check_rays), &checked);
   if (bf_bad != 0) return absl::InternalError(absl::StrCat(scene, ": ", bf_bad, " rays differ from brute force"));
 
   const std::string quality_flag = absl::GetFlag(FLAGS_embree);

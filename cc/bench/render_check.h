@@ -1,0 +1,52 @@
+// render_bench's validation, before anything is timed: every kd-tree variant
+// must give the recorded render's answers exactly, and a sample of the
+// recorded rays must agree with brute force.
+#ifndef KDTREE_CC_BENCH_RENDER_CHECK_H_
+#define KDTREE_CC_BENCH_RENDER_CHECK_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "cc/geometry/triangle.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/render/ray_record.h"
+#include "cc/render/renderer.h"
+#include "cc/render/tracer.h"
+#include "cc/render/view.h"
+
+namespace kdtree {
+namespace bench {
+
+// A traced way of rendering: a tracer and the renderer's modes.
+struct RenderVariant {
+  std::string name;
+  const Tracer* tracer;
+  bool packets = false;      // RenderOptions::packets
+  bool skip_origin = false;  // RenderOptions::skip_origin
+};
+
+// Rays of `recs` on which `tracer` differs from the recorded result (hit
+// flag; for primary rays also triangle, t, u, v).
+uint64_t ExactMismatches(const std::vector<RayRecord>& recs, const Tracer& tracer);
+
+// Brute-force check of `count` evenly spaced records; returns the
+// mismatches and sets `checked`.
+uint64_t BruteForceMismatches(const std::vector<RayRecord>& recs, const BruteForce& bf, int count,
+                              uint64_t* checked);
+
+// `v` against `recorded` (a recording render of the kd-tree with `base`):
+// every recorded ray (ExactMismatches, returned in `mismatches`); with
+// packets, its own render's primary hits bit for bit, shadow count and image;
+// leaving origins untested, every recorded secondary ray from its primary
+// hit's triangle and the image. Error: the first difference, naming scene
+// and variant.
+absl::Status CheckVariant(const std::string& scene, const TriangleSoup& soup, const View& view,
+                          const RenderOptions& base, const RenderResult& recorded,
+                          const RenderVariant& v, uint64_t* mismatches);
+
+}  // namespace bench
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_BENCH_RENDER_CHECK_H_
