@@ -3,6 +3,7 @@ kd/Embree ratio is the record's paired median over its rounds."""
 
 import os
 import unittest
+from unittest import mock
 
 from analysis import embree
 from analysis import embree_build
@@ -121,6 +122,20 @@ class EmbreeTest(Fixture):
         self.assertEqual(embree.time_to_image(dict(r, T_R_fast_runs=[0.3])), (None, []))
         self.assertEqual(embree.time_to_image(dict(r, embree_packets_T_R_runs=None)), (None, []))
         self.assertEqual(embree.time_to_image(None), (None, []))
+
+    def test_time_to_image_takes_the_sooner_of_our_two_trees(self):
+        r = {"T_B_runs": [1.0], "T_R_runs": [0.5], "T_R_fast_runs": [0.25],
+             "embree_T_B_runs": [0.2], "embree_T_R_runs": [0.3],
+             "embree_packets_T_R_runs": [0.2]}
+        trees = {"sah-packet": dict(r, T_B_runs=[2.0]), "sah-packet-binned": r}
+        with mock.patch.object(embree, "_with_embree", lambda df, s, v: trees.get(v)):
+            ratio, runs, tree = embree.best_time_to_image(None, "alpha")
+            self.assertEqual(tree, "sah-packet-binned")
+            self.assertAlmostEqual(ratio, (0.2 + 0.2) / (1.0 + 0.25))
+            trees["sah-packet-binned"] = None  # not run: the other tree
+            self.assertEqual(embree.best_time_to_image(None, "alpha")[2], "sah-packet")
+            trees["sah-packet"] = None
+            self.assertEqual(embree.best_time_to_image(None, "alpha"), (None, [], None))
 
     def test_ratio_figure(self):
         self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.9]),
