@@ -105,11 +105,11 @@ def extract_model_dir(archive, member, dest_dir, error):
         return Path(dest_dir) / real.rsplit("/", 1)[-1]
 
 
-def prepare_parts(entry, fx, tools, stats, cache_paths):
-    """The --parts specs of a generator entry; converts parts not yet cached.
-    `fx` is the fetch module (ensure_deb, ensure_archive, SceneError, log, CACHE)."""
+def prepare_parts(entry, fx, tools, stats, cache_paths, parts_dir):
+    """The --parts specs of a generator entry; converts parts not yet cached
+    into parts_dir (data/cache/parts). `fx` is data/sources.py (ensure_deb,
+    ensure_archive, SceneError, log, TMP)."""
     error = fx.SceneError
-    parts_dir = fx.CACHE / PARTS_DIR_NAME
     parts_dir.mkdir(parents=True, exist_ok=True)
     todo = [p for p in entry["generator"]["parts"]
             if not (parts_dir / f"{part_key(p)}.ply").exists()]

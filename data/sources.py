@@ -21,8 +21,8 @@ from pathlib import Path
 from tqdm import tqdm
 
 import parts
-from fetch_common import (DEBS, DOWNLOADS, EXTRACTED, NPMS, REPO, SCENES, TMP, SceneError,
-                          Skipped, log, run)
+from fetch_common import (CACHE, DEBS, DOWNLOADS, EXTRACTED, NPMS, REPO, SCENES, TMP,
+                          SceneError, Skipped, log, run)
 
 # Blender's own monkey as the report used it (//cc/seed:row18_test meets it):
 # quads, triangulated by the loader (assimp) into 968 triangles.
@@ -285,7 +285,8 @@ def fetch_generator(entry, dest, stats, tools, cache_paths):
             cmd.append(f"--input_up_axis={g['input_up_axis']}")
     if g.get("parts"):
         cmd.append("--parts=" + ",".join(
-            parts.prepare_parts(entry, sys.modules[__name__], tools, stats, cache_paths)))
+            parts.prepare_parts(entry, sys.modules[__name__], tools, stats, cache_paths,
+                                CACHE / parts.PARTS_DIR_NAME)))
     log(f"  generating {g['kind']} ({g['triangles']:,} triangles, seed {g['seed']}) ...")
     run(cmd, what=f"generate --kind={g['kind']}")
 

@@ -31,11 +31,6 @@ SCENES = REPO / "data" / "cache" / "scenes"
 # city, foliage, a hairball and instanced teapots.
 DEFAULT_SCENES = ("bunny", "armadillo", "engine", "city", "fforest", "hairball-small",
                   "teapots", "lost-empire")
-# Every preset Preset() knows (cc/kdtree/config.cc).
-DEFAULT_PRESETS = ("median-16-2", "median-24-2", "median-24-8", "binning-8-driving",
-                   "binning-8", "binning-32", "clipping", "pruning", "clipping-pruning",
-                   "pruning-seed", "sah-binned-32", "sah-sweep", "sah-hybrid", "sah-perfect",
-                   "sah-packet", "sah-packet-binned", "sah-packet-binned-cp")
 
 
 def scene_path(name):
@@ -46,6 +41,9 @@ def scene_path(name):
 
 
 def collect(args):
+    if not args.presets:  # every preset the builder knows (KnownPresetNames)
+        args.presets = subprocess.run([args.build_bench, "--list_presets"], check=True,
+                                      stdout=subprocess.PIPE, text=True).stdout.strip()
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         records = Path(tmp) / "builds.jsonl"
@@ -85,7 +83,8 @@ def main():
     p.add_argument("--build_bench", help="the build_bench binary (an opt build)")
     p.add_argument("--out", help="where to write the fingerprints (JSON)")
     p.add_argument("--scenes", default=",".join(DEFAULT_SCENES))
-    p.add_argument("--presets", default=",".join(DEFAULT_PRESETS))
+    p.add_argument("--presets", default="",
+                   help="comma-separated (default: every preset, build_bench --list_presets)")
     p.add_argument("--threads", default="1,2")
     p.add_argument("--compare", nargs=2, metavar=("A", "B"))
     args = p.parse_args()

@@ -38,6 +38,7 @@
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "cc/base/json_line.h"
 #include "cc/base/median.h"
@@ -70,6 +71,8 @@ ABSL_FLAG(int, warmup, 1,
           "untimed builds per preset and thread count before the timed ones (recorded as "
           "T_B_warmup_runs): a first build writes fresh pages, zeroed by the kernel");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended)");
+ABSL_FLAG(bool, list_presets, false,
+          "print every preset --presets accepts, comma-separated, and exit");
 
 namespace kdtree {
 namespace {
@@ -109,6 +112,10 @@ bool ThreadCounts(std::vector<int>* counts) {
 
 int Run() {
   using bench::Json;
+  if (absl::GetFlag(FLAGS_list_presets)) {
+    std::printf("%s\n", absl::StrJoin(KnownPresetNames(), ",").c_str());
+    return 0;
+  }
   const std::string mesh = FromInvocationDir(absl::GetFlag(FLAGS_mesh));
   if (mesh.empty()) {
     std::fprintf(stderr, "build_bench: --mesh is required\n");

@@ -72,7 +72,6 @@
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
 #include "cc/bench/render_check.h"
-#include "cc/tools/paths.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/brute_force.h"
@@ -81,11 +80,12 @@
 #include "cc/kdtree/env_file.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/render/compare.h"
+#include "cc/render/framing.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
 #include "cc/render/renderer.h"
-#include "cc/render/framing.h"
 #include "cc/render/view.h"
+#include "cc/tools/paths.h"
 
 ABSL_FLAG(std::string, scenes, "bunny", "Comma-separated manifest scenes (fetched).");
 ABSL_FLAG(std::string, repo, "",

@@ -219,11 +219,8 @@ absl::StatusOr<Config> Preset(const std::string& name) {
     p.seed_compatible = true;
     return p;
   }
-  std::vector<std::string> known = PresetNames();
-  known.push_back("pruning-seed");
-  known.insert(known.end(), ExtraPresetNames().begin(), ExtraPresetNames().end());
-  return absl::NotFoundError(
-      absl::StrCat("unknown preset '", name, "'; known: ", absl::StrJoin(known, ", ")));
+  return absl::NotFoundError(absl::StrCat("unknown preset '", name,
+                                          "'; known: ", absl::StrJoin(KnownPresetNames(), ", ")));
 }
 
 const std::vector<std::string>& ExtraPresetNames() {
@@ -231,6 +228,13 @@ const std::vector<std::string>& ExtraPresetNames() {
       new std::vector<std::string>{"sah-binned-32", "sah-sweep", "sah-hybrid", "sah-perfect",
                                    "sah-packet", "sah-packet-binned", "sah-packet-binned-cp"};
   return *names;
+}
+
+std::vector<std::string> KnownPresetNames() {
+  std::vector<std::string> known = PresetNames();
+  known.push_back("pruning-seed");
+  known.insert(known.end(), ExtraPresetNames().begin(), ExtraPresetNames().end());
+  return known;
 }
 
 std::vector<std::string> AllPresetNames() {

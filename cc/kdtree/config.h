@@ -126,6 +126,9 @@ absl::StatusOr<Config> Preset(const std::string& name);
 const std::vector<std::string>& ExtraPresetNames();
 // PresetNames() followed by ExtraPresetNames().
 std::vector<std::string> AllPresetNames();
+// Every name Preset() accepts: PresetNames(), "pruning-seed",
+// ExtraPresetNames().
+std::vector<std::string> KnownPresetNames();
 // "binned", "sweep", "hybrid".
 const char* SplitMethodName(Config::SplitMethod m);
 

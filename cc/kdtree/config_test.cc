@@ -59,6 +59,17 @@ TEST(Config, UnknownPresetIsNotFound) {
   EXPECT_NE(c.status().message().find("binning-9"), std::string::npos);
 }
 
+TEST(Config, EveryKnownPresetIsAcceptedAndNamedInTheError) {
+  const std::vector<std::string> known = KnownPresetNames();
+  EXPECT_EQ(known.size(), PresetNames().size() + 1 + ExtraPresetNames().size());
+  for (const std::string& name : known) EXPECT_TRUE(Preset(name).ok()) << name;
+  const absl::StatusOr<Config> bad = Preset("sah-nonsense");
+  ASSERT_FALSE(bad.ok());
+  for (const std::string& name : known) {
+    EXPECT_NE(bad.status().message().find(name), std::string::npos) << name;
+  }
+}
+
 TEST(Config, ValidateRejectsOutOfRangeValues) {
   Config c;
   c.max_depth = 61;

@@ -44,8 +44,8 @@ struct FramedView {
 // The rule above for the box [lo, hi].
 FramedView FrameBounds(const Point3d& lo, const Point3d& hi, const Framing& framing);
 
-// FrameBounds for `bounds` (y up, an object) as a View of one light; a unit
-// sphere at the origin when `bounds` is empty.
+// FrameBounds for `bounds` (y up, an object) as a View of one light; the box
+// [-1, 1]^3 when `bounds` is empty (no triangles: nothing to frame).
 View AutoView(const AABB& bounds);
 
 }  // namespace kdtree

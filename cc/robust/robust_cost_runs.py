@@ -31,6 +31,11 @@ def read_jsonl(path):
     return out
 
 
+def short_tree(tree):
+    """A source tree id's first 12 characters, for messages."""
+    return (tree or "unknown")[:12]
+
+
 def list_presets(bench):
     """The bench's own preset list (robust_cost_bench --list_presets)."""
     listed = subprocess.run([bench, "--list_presets"], stdout=subprocess.PIPE,
@@ -103,7 +108,7 @@ def run_cost(bench, cost_out, scenes, repeats=5, log=None,
     skipped = len(scenes) + len(presets_generated) - sum(len(p) for _, p in jobs)
     if skipped:
         print("robust_suite: cost: %d (scene, preset) runs of source tree %s "
-              "already in %s, not rerun" % (skipped, (source_tree or "unknown")[:12],
+              "already in %s, not rerun" % (skipped, short_tree(source_tree),
                                             cost_out), file=log, flush=True)
     failed = 0
     for scene, presets in jobs:

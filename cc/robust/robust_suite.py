@@ -132,10 +132,6 @@ def source_tree_of(rec):
     return prov.get("source_tree") if isinstance(prov, dict) else None
 
 
-def short_tree(tree):
-    return (tree or "unknown")[:12]
-
-
 # --- suite -------------------------------------------------------------------
 
 def parse_records(stdout):
@@ -271,7 +267,7 @@ def plan(args, identity, log=None):
     if suite is not None:
         print("robust_suite: %s already holds a complete, passing suite run "
               "of source tree %s (profile %s, commit %s, %s): not rebuilt or "
-              "rerun" % (args.out, short_tree(tree), args.profile,
+              "rerun" % (args.out, cost.short_tree(tree), args.profile,
                          (identity.get("commit") or "unknown")[:12],
                          (suite.get("provenance") or {}).get("timestamp_utc")),
               file=log, flush=True)
@@ -286,7 +282,7 @@ def plan(args, identity, log=None):
                   "%s (%d scenes + %s) of source tree %s with >= %d rounds: "
                   "not rebuilt or rerun" % (args.cost_out, args.profile,
                                             len(scenes), cost.GENERATED,
-                                            short_tree(tree), args.repeats),
+                                            cost.short_tree(tree), args.repeats),
                   file=log, flush=True)
     return run, jobs
 
@@ -347,9 +343,9 @@ def main(argv=None, identity=None):
     if args.cost_bench and jobs:
         scenes = cost.profile_scenes(args.manifest, args.index, args.profile)
         failed += cost.run_cost(args.cost_bench, args.cost_out, scenes,
-                           repeats=args.repeats,
-                           presets_generated=presets_for_generated(args),
-                           source_tree=identity.get("source_tree"))
+                                repeats=args.repeats,
+                                presets_generated=presets_for_generated(args),
+                                source_tree=identity.get("source_tree"))
     return 1 if failed else 0
 
 

@@ -7,7 +7,6 @@
 #include "absl/strings/str_split.h"
 #include "cc/io/mesh_loader.h"
 #include "cc/scenes/assimp_mesh.h"
-#include "cc/scenes/ply.h"
 
 namespace kdtree {
 namespace scenes {
@@ -50,7 +49,6 @@ absl::StatusOr<Part> ReadPart(const std::string& spec) {
   part.role = f[0];
   absl::StatusOr<Mesh> mesh = ReadMesh(f[2]);
   if (!mesh.ok()) return mesh.status();
-  if (mesh->faces.empty()) return absl::InvalidArgumentError("part '" + spec + "': no triangles");
   part.mesh = NormalisePart(*mesh, part.height, up_axis);
   return part;
 }

@@ -33,7 +33,8 @@ struct Part {
 // axis, bottom on y = 0, scaled to `height`.
 Mesh NormalisePart(const Mesh& mesh, float height, int up_axis = 1);
 
-// Parses "role:height:path[:up_axis]" and reads the mesh (.ply or .obj).
+// Parses "role:height:path[:up_axis]" and reads the mesh (assimp_mesh.h's
+// ReadMesh).
 absl::StatusOr<Part> ReadPart(const std::string& spec);
 
 // Parts of `role`, in the order given; empty if none.

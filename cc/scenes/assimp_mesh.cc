@@ -32,7 +32,8 @@ bool FaceUsable(const aiMesh& mesh, const aiFace& face) {
 // not null), its faces into the totals.
 void AddInstance(const aiMesh& mesh, const aiMatrix4x4& transform, FlattenTotals& t, Mesh* out) {
   ++t.instances;
-  // Output index of each of this instance's vertices (shared as in the file).
+  // Output index of each of this instance's vertices (shared as assimp's
+  // reader shares them).
   std::vector<int32_t> remap(out != nullptr ? mesh.mNumVertices : 0, -1);
   for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
     const aiFace& face = mesh.mFaces[f];

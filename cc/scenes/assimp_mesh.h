@@ -2,12 +2,19 @@
 // reader of outside mesh formats (cc/io/mesh_loader.h loads the same files
 // for the renderer). The scene is read with aiProcess_Triangulate and its node
 // hierarchy flattened: a mesh referenced by k nodes counts k times, with the
-// nodes' transforms applied, as a flattened scene has it. Vertices are shared
-// within one instance, numbered in the order faces first use them.
+// nodes' transforms applied, as a flattened scene has it. Within one instance
+// vertices are shared as assimp's reader shares them, numbered in the order
+// faces first use them: PLY keeps the file's indices, while assimp's OBJ
+// reader gives every face corner a vertex of its own (so subdivide and refine,
+// which split shared edges, want PLY inputs; fetch.py gives them PLY).
 //
 // Malformed reader output is skipped and counted, never dereferenced: assimp
 // 5.2's Q3BSP reader leaves node mesh indices past the mesh array on the
-// Nexuiz maps.
+// Nexuiz maps. The triangulation runs inside assimp's ReadFile, and assimp
+// 5.2's post-processing can crash on face indices past the vertex array (a
+// truncated binary PLY; cc/io/mesh_loader.h checks them first): the scene
+// tools read files data/fetch.py has already read with mesh_info, in a child
+// process.
 #ifndef KDTREE_CC_SCENES_ASSIMP_MESH_H_
 #define KDTREE_CC_SCENES_ASSIMP_MESH_H_
 

@@ -50,6 +50,28 @@ TEST(ReadMesh, TriangulatesObjAndNumbersVerticesByFirstUse) {
   EXPECT_EQ(m->vertices[0], Vec3(0, 0, 0));
 }
 
+// Two triangles sharing an edge: PLY keeps the shared vertices, assimp's OBJ
+// reader does not (assimp_mesh.h: subdivide and refine want PLY).
+TEST(ReadMesh, PlyKeepsSharedVerticesObjDoesNot) {
+  Mesh quad;
+  quad.AddVertex({0, 0, 0});
+  quad.AddVertex({1, 0, 0});
+  quad.AddVertex({1, 1, 0});
+  quad.AddVertex({0, 1, 0});
+  quad.AddQuad(0, 1, 2, 3);
+  const std::string ply = TempPath("quad.ply");
+  ASSERT_TRUE(WritePly(ply, quad).ok());
+  absl::StatusOr<Mesh> from_ply = ReadMesh(ply);
+  ASSERT_TRUE(from_ply.ok()) << from_ply.status();
+  EXPECT_EQ(from_ply->vertices.size(), 4u);
+  const std::string obj = TempPath("two.obj");
+  WriteText(obj, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+  absl::StatusOr<Mesh> from_obj = ReadMesh(obj);
+  ASSERT_TRUE(from_obj.ok()) << from_obj.status();
+  EXPECT_EQ(from_obj->TriangleCount(), 2u);
+  EXPECT_EQ(from_obj->vertices.size(), 6u);
+}
+
 TEST(ReadMesh, ErrorsNameTheFile) {
   const std::string missing = TempPath("missing.ply");
   absl::StatusOr<Mesh> m = ReadMesh(missing);

@@ -20,13 +20,13 @@
 #include "absl/strings/str_format.h"
 #include "cc/base/json_line.h"
 #include "cc/scenes/assembly.h"
+#include "cc/scenes/assimp_mesh.h"
 #include "cc/scenes/city.h"
 #include "cc/scenes/courtyard.h"
 #include "cc/scenes/forest.h"
 #include "cc/scenes/hairball.h"
 #include "cc/scenes/mesh.h"
 #include "cc/scenes/plant.h"
-#include "cc/scenes/assimp_mesh.h"
 #include "cc/scenes/ply.h"
 #include "cc/scenes/refine.h"
 #include "cc/scenes/subdivide.h"
@@ -38,7 +38,7 @@ ABSL_FLAG(std::string, kind, "", "hairball, voxel, teapots, city, forest, subdiv
 ABSL_FLAG(int64_t, triangles, 0, "target triangle count (0: the generator's default)");
 ABSL_FLAG(uint64_t, seed, 1, "random seed");
 ABSL_FLAG(std::string, out, "", "output .ply path (absolute under bazel run)");
-ABSL_FLAG(std::string, input, "", "teapots, subdivide, refine: the input mesh (.ply or .obj)");
+ABSL_FLAG(std::string, input, "", "teapots, subdivide, refine: the input mesh (any format assimp reads; PLY keeps shared vertices, cc/scenes/assimp_mesh.h)");
 ABSL_FLAG(std::vector<std::string>, parts, {},
           "plant, courtyard: comma-separated role:height_m:path[:up_axis] (cc/scenes/assembly.h)");
 ABSL_FLAG(int, input_up_axis, 1, "teapots: up axis of --input, 1 (y) or 2 (z)");

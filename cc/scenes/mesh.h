@@ -15,8 +15,9 @@
 namespace kdtree {
 namespace scenes {
 
-// The most a scene tool reads of one input file (meshes, maps, tracks;
-// cc/base/read_file.h): 2 GiB, above every input of the full profile.
+// The most a scene tool reads of one input file (meshes: assimp_mesh.h; maps
+// and tracks: cc/base/read_file.h): 2 GiB, above every input of the full
+// profile.
 inline constexpr size_t kSceneInputBudget = size_t{2} << 30;
 
 // 3x3 matrix (row-major) for the rotations and scales of instanced objects.
