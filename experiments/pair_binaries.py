@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Paired render timings of kdrt binaries: is a speed change outside the
-noise? (The README's "How the numbers are measured"; render_bench pairs
+"""Paired build and render timings of kdrt binaries: is a speed change
+outside the noise? (The README's "How the numbers are measured"; render_bench pairs
 tracers in one process, this pairs whole binaries.)
 
     /usr/bin/python3 experiments/pair_binaries.py \
@@ -9,10 +9,11 @@ tracers in one process, this pairs whole binaries.)
 
 Each round runs every binary once per scene, one process at a time, the
 order rotated per round (kdrt --repeats 3 --fast_render --embree off, so a
-record holds T_R and the fast mode's T_R); round 0 is a warm-up and is
-dropped. Per scene and binary after the first, it prints the median over the
-rounds of (this binary's time / the first's in the same round) with the
-min..max, for T_R and the fast mode. Give a copy of the old binary as the
+record holds T_B, T_R and the fast mode's T_R, each the median of its
+process's runs); round 0 is a warm-up and is dropped. Per scene and binary
+after the first, it prints the median over the rounds of (this binary's time
+/ the first's in the same round) with the min..max, for T_B, T_R and the fast
+mode. Give a copy of the old binary as the
 last one: its ratios are the control, the noise a real change must clear.
 Every record goes to --out (one JSON line per run, with the image hash: the
 binaries must render the same image).
@@ -28,10 +29,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_matrix  # noqa: E402  (run_kdrt: one kdrt process, its record)
 
 
+COLUMNS = ("T_B", "T_R", "fast")
+
+
 def ratios(times, reference):
-    """Per round, time / the reference's time in that round, for each of
-    T_R and the fast mode: [(t_r ratio, fast ratio)]."""
-    return [tuple(t[i] / r[i] for i in range(2)) for t, r in zip(times, reference)]
+    """Per round, time / the reference's time in that round, for each column
+    (T_B, T_R and the fast mode): [(t_b ratio, t_r ratio, fast ratio)]."""
+    return [tuple(a / b for a, b in zip(t, r)) for t, r in zip(times, reference)]
 
 
 def summary(pairs):
@@ -65,16 +69,17 @@ def main(argv=None):
                 for b in bins[r % len(bins):] + bins[:r % len(bins)]:
                     rec = run(b, s, args.preset)
                     images[s].add(rec["image_fnv64"])
-                    log.write(json.dumps({"round": r, "scene": s, "binary": b, "T_R": rec["T_R"],
-                                          "fast": rec["fast_render"]["T_R"],
+                    row = (rec["T_B"], rec["T_R"], rec["fast_render"]["T_R"])
+                    log.write(json.dumps({"round": r, "scene": s, "binary": b,
+                                          **dict(zip(COLUMNS, row)),
                                           "image_fnv64": rec["image_fnv64"]}) + "\n")
                     if r > 0:
-                        times[(s, b)].append((rec["T_R"], rec["fast_render"]["T_R"]))
+                        times[(s, b)].append(row)
     for s in scenes:
         for b in bins[1:]:
             cols = summary(ratios(times[(s, b)], times[(s, bins[0])]))
             print("%s %s %s" % (s, b, " | ".join(
-                "%s %.3f [%.3f..%.3f]" % (name, *c) for name, c in zip(("T_R", "fast"), cols))))
+                "%s %.3f [%.3f..%.3f]" % (name, *c) for name, c in zip(COLUMNS, cols))))
         if len(images[s]) != 1:
             print("%s: the binaries rendered %d different images" % (s, len(images[s])))
     return 0 if all(len(v) == 1 for v in images.values()) else 1

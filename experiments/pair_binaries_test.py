@@ -10,9 +10,10 @@ import pair_binaries  # noqa: E402
 
 class PairBinariesTest(unittest.TestCase):
     def test_ratios_are_paired_per_round(self):
-        new = [(1.0, 0.5), (2.0, 0.6), (1.5, 0.9)]
-        old = [(2.0, 0.5), (2.0, 0.3), (1.0, 0.9)]
-        self.assertEqual(pair_binaries.ratios(new, old), [(0.5, 1.0), (1.0, 2.0), (1.5, 1.0)])
+        new = [(1.0, 0.5, 4.0), (2.0, 0.6, 1.0), (1.5, 0.9, 3.0)]
+        old = [(2.0, 0.5, 2.0), (2.0, 0.3, 1.0), (1.0, 0.9, 3.0)]
+        self.assertEqual(pair_binaries.ratios(new, old),
+                         [(0.5, 1.0, 2.0), (1.0, 2.0, 1.0), (1.5, 1.0, 1.0)])
 
     def test_summary_is_median_min_max_per_column(self):
         got = pair_binaries.summary([(0.5, 1.0), (1.0, 2.0), (1.5, 1.0)])
