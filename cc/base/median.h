@@ -1,4 +1,5 @@
-// The median of timed runs: the figure the report quotes of repeated timings.
+// The median of timed runs, the figure the report quotes of repeated timings,
+// and the paired ratios of two tracers' runs.
 #ifndef KDTREE_CC_BASE_MEDIAN_H_
 #define KDTREE_CC_BASE_MEDIAN_H_
 
@@ -15,6 +16,16 @@ inline double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const size_t n = values.size();
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// num[i] / den[i] for each round both have: two tracers' times taken in the
+// same round, so a slow stretch of the machine falls on both (their median is
+// the paired ratio every benchmark reports).
+inline std::vector<double> PairedRatios(const std::vector<double>& num,
+                                        const std::vector<double>& den) {
+  std::vector<double> out;
+  for (size_t i = 0; i < num.size() && i < den.size(); ++i) out.push_back(num[i] / den[i]);
+  return out;
 }
 
 }  // namespace kdtree

@@ -48,7 +48,10 @@
 // every recorded secondary ray), "kd_packet_origin" (both: packets, and shadow
 // rays leaving their origin triangle untested); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
-// ratios of every kd tracer to each. --envs adds one
+// ratios of every kd tracer to each. A variant NAME@TARGET runs the packet
+// kernel on the given Highway target ("kd_packet_origin@AVX2": 8 lanes on an
+// AVX-512 machine), validated like the others, to compare kernel widths on
+// the same rays. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
 // kd traversal in the same rounds: constants are tuned on the same rays and
 // under the same load, and every such tree must give kd's exact hits.
@@ -56,6 +59,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,6 +83,7 @@
 #include "cc/kdtree/config.h"
 #include "cc/kdtree/env_file.h"
 #include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/ray_packet.h"
 #include "cc/render/compare.h"
 #include "cc/render/framing.h"
 #include "cc/render/kdtree_tracer.h"
@@ -103,7 +108,8 @@ ABSL_FLAG(int, warmup, 1,
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet,kd_origin",
           "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet, kd_origin, "
-          "kd_packet_origin.");
+          "kd_packet_origin; NAME@TARGET runs the packet kernel on that Highway target "
+          "(kd_packet_origin@AVX2; the machine's: ray_packet.h PacketKernelTargets).");
 ABSL_FLAG(std::string, envs, "",
           "Comma-separated environment files (env_file.h), each applied on top of --preset to "
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
@@ -117,13 +123,10 @@ ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout o
 namespace kdtree {
 namespace {
 
-// Median over rounds of a[r] / b[r]: times taken in the same round, so a slow
-// stretch of the machine (whole rounds up to 34 % slower on the measured VMs)
-// falls on both.
+// Median over rounds of a[r] / b[r] (whole rounds ran up to 34 % apart on
+// the measured VMs; pairing puts such a stretch on both).
 double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
-  std::vector<double> r;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i) r.push_back(a[i] / b[i]);
-  return r.empty() ? 0.0 : Median(r);
+  return Median(PairedRatios(a, b));
 }
 
 // A variant and its times.
@@ -192,7 +195,9 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
 
   std::vector<std::string> variants = absl::StrSplit(absl::GetFlag(FLAGS_variants), ',');
   std::vector<Entry> proto;
-  for (const std::string& v : variants) {
+  for (const std::string& name : variants) {
+    // NAME@TARGET: the variant with the packet kernel on that Highway target.
+    const std::string v = name.substr(0, name.find('@'));
     if (v == "kd") {
       proto.emplace_back(v, &kd);
     } else if (v == "kd_index") {
@@ -208,6 +213,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }
+    proto.back().name = name;
+    if (name.size() > v.size()) proto.back().kernel = name.substr(v.size() + 1);
   }
   for (const EnvTree& e : env_trees) proto.emplace_back(e.name, e.tracer.get());
 
@@ -259,6 +266,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     // image exactly (Embree may differ on grazing rays: its disagreements are
     // reported above).
     const auto render = [&](const Entry& e) -> absl::StatusOr<RenderResult> {
+      std::optional<ScopedPacketKernelTarget> kernel;
+      if (!e.kernel.empty()) kernel.emplace(e.kernel);  // checked in validation
       RenderOptions o = topt;
       o.packets = e.packets;
       o.skip_origin = e.skip_origin;

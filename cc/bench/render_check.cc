@@ -1,8 +1,10 @@
 #include "cc/bench/render_check.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
+#include "cc/kdtree/ray_packet.h"
 
 namespace kdtree {
 namespace bench {
@@ -80,6 +82,11 @@ uint64_t BruteForceMismatches(const std::vector<RayRecord>& recs, const BruteFor
 absl::Status CheckVariant(const std::string& scene, const TriangleSoup& soup, const View& view,
                           const RenderOptions& base, const RenderResult& recorded,
                           const RenderVariant& v, uint64_t* mismatches) {
+  std::optional<ScopedPacketKernelTarget> kernel;
+  if (!v.kernel.empty() && !kernel.emplace(v.kernel).ok()) {
+    return absl::InvalidArgumentError(absl::StrCat(v.name, ": no packet kernel '", v.kernel,
+                                                   "' on this machine"));
+  }
   *mismatches = ExactMismatches(recorded.rays, *v.tracer);
   if (*mismatches != 0) {
     return absl::InternalError(

@@ -25,6 +25,9 @@ struct RenderVariant {
   const Tracer* tracer;
   bool packets = false;      // RenderOptions::packets
   bool skip_origin = false;  // RenderOptions::skip_origin
+  // The packet kernel's Highway target ("AVX2", ...; ray_packet.h's
+  // ScopedPacketKernelTarget); empty: the one Highway picks for the CPU.
+  std::string kernel;
 };
 
 // Rays of `recs` on which `tracer` differs from the recorded result (hit
@@ -41,7 +44,7 @@ uint64_t BruteForceMismatches(const std::vector<RayRecord>& recs, const BruteFor
 // packets, its own render's primary hits bit for bit, shadow count and image;
 // leaving origins untested, every recorded secondary ray from its primary
 // hit's triangle and the image. Error: the first difference, naming scene
-// and variant.
+// and variant, or a kernel target this machine cannot run.
 absl::Status CheckVariant(const std::string& scene, const TriangleSoup& soup, const View& view,
                           const RenderOptions& base, const RenderResult& recorded,
                           const RenderVariant& v, uint64_t* mismatches);

@@ -34,6 +34,9 @@
 #ifndef KDTREE_CC_KDTREE_RAY_PACKET_H_
 #define KDTREE_CC_KDTREE_RAY_PACKET_H_
 
+#include <string>
+#include <vector>
+
 #include "cc/geometry/ray.h"
 #include "cc/kdtree/traversal.h"
 #include "cc/kdtree/tree.h"
@@ -60,6 +63,27 @@ bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options = Tra
 // The Highway target the packet kernel runs on ("AVX3", "AVX2", "SSE4", ...;
 // kdrt's record fast_render.packet_kernel).
 const char* PacketKernelTarget();
+
+// The targets this machine can run the kernel on, best first ("AVX3_DL",
+// "AVX3", "AVX2", "SSE4", "SSSE3", "SCALAR" on AVX-512 hardware).
+std::vector<std::string> PacketKernelTargets();
+
+// While alive, the packet kernel (and every other Highway dispatch of the
+// process) runs on the target named `name`, one of PacketKernelTargets():
+// for benchmarks and tests that compare the widths on the same rays. ok() is
+// false for a name this machine cannot run (nothing changes then). Not
+// thread-safe: Highway's choice is process-wide.
+class ScopedPacketKernelTarget {
+ public:
+  explicit ScopedPacketKernelTarget(const std::string& name);
+  ~ScopedPacketKernelTarget();
+  ScopedPacketKernelTarget(const ScopedPacketKernelTarget&) = delete;
+  ScopedPacketKernelTarget& operator=(const ScopedPacketKernelTarget&) = delete;
+  bool ok() const { return ok_; }
+
+ private:
+  bool ok_ = false;
+};
 
 }  // namespace kdtree
 

@@ -37,6 +37,7 @@
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -302,5 +303,26 @@ const char* KernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTargetImpl)(); }
 std::vector<int64_t> KernelTargets() { return hwy::SupportedAndGeneratedTargets(); }
 
 }  // namespace packet_internal
+
+std::vector<std::string> PacketKernelTargets() {
+  std::vector<std::string> names;
+  for (const int64_t t : packet_internal::KernelTargets()) names.push_back(hwy::TargetName(t));
+  return names;
+}
+
+ScopedPacketKernelTarget::ScopedPacketKernelTarget(const std::string& name) {
+  for (const int64_t t : packet_internal::KernelTargets()) {
+    if (name == hwy::TargetName(t)) {
+      hwy::SetSupportedTargetsForTest(t);
+      ok_ = true;
+      return;
+    }
+  }
+}
+
+ScopedPacketKernelTarget::~ScopedPacketKernelTarget() {
+  if (ok_) hwy::SetSupportedTargetsForTest(0);
+}
+
 }  // namespace kdtree
 #endif  // HWY_ONCE

@@ -29,7 +29,6 @@
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
 #include "gtest/gtest.h"
-#include "hwy/targets.h"
 
 namespace kdtree {
 namespace {
@@ -219,13 +218,13 @@ TEST_P(PacketVsSingle, EveryKernelWidth) {
   if (preset != "clipping-pruning" && preset != "sah-packet") GTEST_SKIP();
   const PacketSet s = MakePackets(soup_, 9);
   std::vector<std::string> ran;
-  for (const int64_t target : packet_internal::KernelTargets()) {
-    hwy::SetSupportedTargetsForTest(target);
+  for (const std::string& target : PacketKernelTargets()) {
+    const ScopedPacketKernelTarget scoped(target);
+    ASSERT_TRUE(scoped.ok()) << target;
     ran.push_back(PacketKernelTarget());
     const Counts c = Check(soup_, tree_, s, /*brute=*/false);
     EXPECT_EQ(c.closest + c.any, 0u) << ran.back();
   }
-  hwy::SetSupportedTargetsForTest(0);
   // At least the 4- and the 16-lane kernels on a machine with AVX-512.
   EXPECT_GE(ran.size(), 2u);
   std::string names;

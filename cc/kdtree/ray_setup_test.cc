@@ -4,12 +4,13 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <string>
 #include <utility>
 
 #include "cc/geometry/ray_check.h"
 #include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/ray_packet.h"
 #include "gtest/gtest.h"
-#include "hwy/targets.h"
 
 namespace kdtree {
 namespace {
@@ -107,8 +108,9 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
   std::mt19937 rng(20261202);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   int groups = 0, hits = 0, targets = 0;
-  for (const int64_t target : packet_internal::KernelTargets()) {
-    hwy::SetSupportedTargetsForTest(target);
+  for (const std::string& target : PacketKernelTargets()) {
+    const ScopedPacketKernelTarget scoped(target);
+    ASSERT_TRUE(scoped.ok()) << target;
     ++targets;
     for (int g = 0; g < 8000; ++g) {
       AABB box;
@@ -165,7 +167,6 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
       }
     }
   }
-  hwy::SetSupportedTargetsForTest(0);
   EXPECT_GE(targets, 2);
   EXPECT_GT(groups, 1000 * targets);
   EXPECT_GT(hits, 10000);

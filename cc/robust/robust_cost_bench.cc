@@ -50,6 +50,7 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "cc/base/json_line.h"
+#include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/io/soup_cache.h"
@@ -94,14 +95,6 @@ TriangleSoup GeneratedScene() {
 
 double Seconds(const std::chrono::steady_clock::time_point& start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The median of runs (mean of the middle two for an even count; 0 for none).
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // The answers of one trace of all rays with one test.
@@ -160,13 +153,6 @@ absl::Status TimeLanes(const KdTree& tree, const std::vector<Ray>& primary, cons
   }
   lock->Release();
   return absl::OkStatus();
-}
-
-// num[i] / den[i] for each round both have.
-std::vector<double> PairedRatios(const std::vector<double>& num, const std::vector<double>& den) {
-  std::vector<double> out;
-  for (size_t i = 0; i < num.size() && i < den.size(); ++i) out.push_back(num[i] / den[i]);
-  return out;
 }
 
 struct Scene {

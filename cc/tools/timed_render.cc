@@ -38,12 +38,6 @@ absl::Status TimeRounds(const TriangleSoup& soup, const View& view, int repeats,
   return absl::OkStatus();
 }
 
-std::vector<double> PairedRatios(const std::vector<double>& num, const std::vector<double>& den) {
-  std::vector<double> out;
-  for (size_t i = 0; i < num.size() && i < den.size(); ++i) out.push_back(num[i] / den[i]);
-  return out;
-}
-
 nlohmann::ordered_json EffectJson(uint64_t rays, const std::vector<double>& runs) {
   return {{"rays", rays}, {"seconds", Median(runs)}, {"seconds_runs", runs}};
 }

@@ -50,9 +50,6 @@ using StepFn = std::function<void(const std::string&)>;
 absl::Status TimeRounds(const TriangleSoup& soup, const View& view, int repeats, double budget_s,
                         std::vector<Lane>* lanes, const StepFn& step);
 
-// num[i] / den[i] for each round both have.
-std::vector<double> PairedRatios(const std::vector<double>& num, const std::vector<double>& den);
-
 // {"rays": n, "seconds": median, "seconds_runs": [...]}
 nlohmann::ordered_json EffectJson(uint64_t rays, const std::vector<double>& runs);
 // {"primary": ..., "shadow": ..., "ao": ...} of a lane.
