@@ -19,9 +19,11 @@
 // choice of side for planar triangles, with the builder's plain partition).
 // The first strict minimum wins, axes in x, y, z order.
 //
-// Complexity: this form sorts each node's events (O(N log N) per node,
-// O(N log^2 N) for the tree); it finds the same plane as the paper's O(N log N)
-// variant, which keeps the event lists sorted through the recursion.
+// Complexity: this form sorts each node's events (O(N log^2 N) for the tree
+// with a comparison sort); it finds the same plane as the paper's O(N log N)
+// variant, which keeps the event lists sorted through the recursion. The
+// events are 34-bit keys, so a node of many sorts them by radix in three
+// linear passes (the same order: equal keys are the same event).
 #ifndef KDTREE_CC_KDTREE_SWEEP_SAH_H_
 #define KDTREE_CC_KDTREE_SWEEP_SAH_H_
 
@@ -35,9 +37,11 @@
 
 namespace kdtree {
 
-// Reused event array (no per-node allocation once it has grown).
+// Reused arrays (no per-node allocation once they have grown): the events,
+// the radix sort's second buffer and its digit counts.
 struct SweepScratch {
-  std::vector<uint64_t> events;
+  std::vector<uint64_t> events, sorted;
+  std::vector<uint32_t> counts;
 };
 
 // Best plane over every event of the three axes, under SplitCost (sah_cost.h).

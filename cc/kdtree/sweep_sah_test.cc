@@ -79,6 +79,41 @@ TEST(SweepSah, FindsTheBestPlaneOfEveryEventRelaxedAndFull) {
   }
 }
 
+// Nodes of 1,024 events and more are sorted by radix (sweep_sah.h): the same
+// planes, on coordinates of both signs and many magnitudes (every digit of
+// the key varies) with ties and planar boxes.
+TEST(SweepSah, LargeNodesFindTheSameBestPlane) {
+  for (uint32_t seed = 1; seed <= 6; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> coord(-50.0f, 50.0f);
+    std::uniform_int_distribution<int> pick(0, 9);
+    std::vector<BuildRef> refs;
+    for (int i = 0; i < 500 + 150 * static_cast<int>(seed); ++i) {
+      AABB b;
+      for (int k = 0; k < 3; ++k) {
+        float a = coord(rng), z = coord(rng);
+        if (pick(rng) == 0) a = std::round(a);  // ties
+        if (pick(rng) == 0) z = a;              // planar
+        if (pick(rng) == 0) a *= 1e-3f, z *= 1e-3f;
+        if (a > z) std::swap(a, z);
+        b.lo[k] = a, b.hi[k] = z;
+      }
+      refs.push_back(BuildRef{b, static_cast<uint32_t>(i)});
+    }
+    AABB box;
+    for (const BuildRef& r : refs) box.Extend(r.box);
+    Config c;
+    c.full_sah = seed % 2 == 0;
+    SweepScratch scratch;
+    const Split got = FindSweepSahSplit(refs.data(), refs.size(), box, c, &scratch);
+    const Split want = BruteForceBest(refs, box, c);
+    ASSERT_TRUE(want.found);
+    EXPECT_EQ(got.cost, want.cost) << seed;
+    EXPECT_EQ(got.axis, want.axis) << seed;
+    EXPECT_EQ(got.pos, want.pos) << seed;
+  }
+}
+
 TEST(SweepSah, PlanarTrianglesGoToTheCheaperSide) {
   // Three triangles flat in z = 1 and one box spanning z in [0, 3]. At P = 1
   // the partition sends the flat ones to both children (N_L = N_R = 4); just
