@@ -14,10 +14,13 @@
 // Exactness (ray_packet.h): every lane applies the single-ray traversal's rules
 // (traversal.h) with the same float operations to the same intervals, and
 // drops a popped node when its own best hit rules it out, so it visits the
-// nodes the single-ray traversal visits. The vector step per triangle is the
-// watertight test's common rejection (packet_reject.h, the same IEEE
-// operations in the same order), whose set lanes are certain misses; every
-// other lane gets the scalar IntersectTriangleWatertight itself.
+// nodes the single-ray traversal visits. Per triangle, the watertight test
+// runs on all lanes at once with its own IEEE operations in its own order
+// (lane_test-inl.h): the common rejection, whose set lanes are certain
+// misses, then the rest of the test in double vectors for the lanes with
+// decided signs; the rare lanes left (undecided signs, near-zero area, a
+// triangle across the origin's depth) get the scalar
+// IntersectTriangleWatertight itself.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cc/kdtree/ray_packet_kernel.cc"
 // Every target the compiler can build, also under -march=native, so that the
@@ -28,6 +31,7 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 // Per target, after foreach_target.h:
+#include "cc/kdtree/lane_test-inl.h"
 #include "cc/kdtree/mask_bits-inl.h"
 
 #include <cmath>
@@ -46,68 +50,30 @@ namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-template <class D>
-HWY_INLINE hn::Vec<D> MaxAbs3(const hn::Vec<D> v[3]) {
-  return hn::Max(hn::Max(hn::Abs(v[0]), hn::Abs(v[1])), hn::Abs(v[2]));
-}
-
-// The lanes' watertight frames, loaded once per chunk.
-template <class D>
-struct Frames {
-  hn::Vec<D> ox, oy, oz, sx, sy, sz, shear_weight;
-  Frames(D d, const PacketRays& p, size_t base)
-      : ox(hn::Load(d, p.ox + base)),
-        oy(hn::Load(d, p.oy + base)),
-        oz(hn::Load(d, p.oz + base)),
-        sx(hn::Load(d, p.sx + base)),
-        sy(hn::Load(d, p.sy + base)),
-        sz(hn::Load(d, p.sz + base)),
-        shear_weight(hn::Load(d, p.shear_weight + base)) {}
-};
-
-// The lanes (rays) that certainly miss triangle `l` of a leaf packet: the
-// watertight test's first step and edge bound (watertight.h, packet_reject.h)
-// with the triangle broadcast and the rays in the lanes.
-template <class D>
-HWY_INLINE uint32_t RejectRays(D d, const Frames<D>& f, const Group& g, const float* packet,
-                               int l, uint32_t behind) {
-  using V = hn::Vec<D>;
-  const V ox = f.ox, oy = f.oy, oz = f.oz, sx = f.sx, sy = f.sy;
-  V x[3], y[3], z[3];
-  for (int v = 0; v < 3; ++v) {
-    const float* q = packet + 3 * v * kPacketLanes + l;
-    z[v] = hn::Sub(hn::Set(d, q[g.kz * kPacketLanes]), oz);
-    x[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.kx * kPacketLanes]), ox), hn::Mul(sx, z[v]));
-    y[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.ky * kPacketLanes]), oy), hn::Mul(sy, z[v]));
-  }
-  const V e0 = hn::Sub(hn::Mul(x[2], y[1]), hn::Mul(y[2], x[1]));
-  const V e1 = hn::Sub(hn::Mul(x[0], y[2]), hn::Mul(y[0], x[2]));
-  const V e2 = hn::Sub(hn::Mul(x[1], y[0]), hn::Mul(y[1], x[0]));
-  const V lmax = hn::Max(MaxAbs3<D>(x), MaxAbs3<D>(y));
-  const V depth = hn::Mul(hn::Add(MaxAbs3<D>(z), hn::Set(d, watertight_internal::kEdgeBoundMinDepth)),
-                          f.shear_weight);
-  const V bound = hn::Add(hn::Mul(hn::Set(d, watertight_internal::kEdgeBoundRel),
-                                  hn::Mul(lmax, hn::Add(lmax, depth))),
-                          hn::Set(d, watertight_internal::kEdgeBoundAbs));
-  const V e_max = hn::Max(hn::Max(e0, e1), e2);
-  const V e_min = hn::Min(hn::Min(e0, e1), e2);
-  uint32_t reject = Bits(d, hn::And(hn::Gt(e_max, bound), hn::Lt(e_min, hn::Neg(bound))));
-  if (behind != 0) {
-    const V sz = f.sz, zero = hn::Zero(d);
-    const auto all_behind = hn::And(hn::And(hn::Lt(hn::Mul(sz, z[0]), zero),
-                                            hn::Lt(hn::Mul(sz, z[1]), zero)),
-                                    hn::Lt(hn::Mul(sz, z[2]), zero));
-    reject |= Bits(d, all_behind) & behind;
-  }
-  return reject;
-}
-
 struct Stack {
   HWY_ALIGN float t_entry[kMaxTraversalStack][kLanes];
   HWY_ALIGN float t_exit[kMaxTraversalStack][kLanes];
   uint32_t node[kMaxTraversalStack];
   uint32_t lanes[kMaxTraversalStack];
 };
+
+// Lane i's hit on triangle `tri` at t (u, v), if it is the closest so far
+// (any hit: the lane is done).
+template <bool kAnyHit>
+HWY_INLINE void Record(int i, uint32_t tri, float t, float u, float v, Hit* h, uint32_t* lanes,
+                       uint32_t* found, float* best_t) {
+  if (!kAnyHit && !Closer(t, tri, *h)) return;
+  h->tri = tri;
+  h->t = t;
+  h->u = u;
+  h->v = v;
+  *found |= 1u << i;
+  if (kAnyHit) {
+    *lanes &= ~(1u << i);
+  } else {
+    best_t[i] = t;
+  }
+}
 
 // The lanes of `lanes` the leaf's triangles are tested against; updates best
 // and best_t (closest hit) or `lanes` and *found (any hit: a lane with a hit
@@ -127,33 +93,29 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
     id[0] &= ~kLastPacket;
     for (int l = 0; l < kPacketLanes && *lanes != 0; ++l) {
       if (id[l] == kPadLane) break;  // pads only follow a leaf's last triangle
-      uint32_t rays = *lanes & ~RejectRays(d, f, g, packet, l, behind & *lanes);
+      const LaneShear<D> s = ShearLanes(d, f, g, packet, l);
+      uint32_t rays = *lanes & ~RejectRays(d, f, s, behind & *lanes);
       if (rays != 0 && origins) {
         rays &= ~Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l])));
       }
-      while (rays != 0) {
-        const int i = __builtin_ctz(rays);
-        rays &= rays - 1;
+      if (rays == 0) continue;
+      LaneHits lh;
+      FinishLanes(d, f, s, rays, behind, best_t, &lh);
+      for (uint32_t m = lh.hit; m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        Record<kAnyHit>(i, id[l], lh.t[i], lh.u[i], lh.v[i], &best[base + i], lanes, found, best_t);
+      }
+      for (uint32_t m = lh.scalar; m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(m);
         const size_t r = base + i;
         const float* q = packet + l;
         const Vec3 a(q[0 * 4], q[1 * 4], q[2 * 4]);
         const Vec3 b(q[3 * 4], q[4 * 4], q[5 * 4]);
         const Vec3 c(q[6 * 4], q[7 * 4], q[8 * 4]);
         float t, u, v;
-        Hit& h = best[r];
         const WatertightRay w = LaneRay(p, g.kx, g.ky, g.kz, static_cast<int>(r));
-        if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], h.t, &t, &u, &v) &&
-            (kAnyHit || Closer(t, id[l], h))) {
-          h.tri = id[l];
-          h.t = t;
-          h.u = u;
-          h.v = v;
-          *found |= 1u << i;
-          if (kAnyHit) {
-            *lanes &= ~(1u << i);
-          } else {
-            best_t[i] = t;
-          }
+        if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], best[r].t, &t, &u, &v)) {
+          Record<kAnyHit>(i, id[l], t, u, v, &best[r], lanes, found, best_t);
         }
       }
     }
@@ -242,7 +204,8 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
       node = &nodes[index];
     }
     if (node->index() != kEmptyLeaf) {
-      TestLeaf<kAnyHit>(d, tree, p, frames, g, base, node->index(), &lanes, &found, best_t, best);
+      TestLeaf<kAnyHit>(d, tree, p, frames, g, base, node->index(), &lanes, &found, best_t,
+                        best);
     }
     // Next node: each lane drops it when it starts beyond that lane's best
     // hit plus slack (any hit: lanes with a hit are done).

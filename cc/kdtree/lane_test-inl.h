@@ -1,0 +1,211 @@
+// The watertight ray-triangle test (cc/geometry/watertight.h) for one
+// triangle against a vector of rays, one ray per lane, for the packet kernel
+// (ray_packet_kernel.cc); per target like it (Highway's per-target include
+// guard).
+//
+// ShearLanes and RejectRays are the test's first step and edge bound with the
+// triangle broadcast (the same IEEE operations in the same order as Shear and
+// EdgeErrorBound: packet_reject.h does the same for four triangles and one
+// ray), so a lane RejectRays sets is a lane the test rejects. FinishLanes then
+// runs the rest of the test for the common case, a ray whose three edge
+// functions have decided, agreeing signs and a triangle in front of its
+// origin: watertight.h's Finish, in double vectors with Finish's operations
+// in Finish's order (each IEEE operation is correctly rounded, so every lane
+// gets the scalar test's floats: t, u, v bit for bit). The rare lanes (an
+// undecided sign, a projected area within rounding of zero, a triangle that
+// spans the origin's depth) are returned for the scalar test itself.
+#if defined(KDTREE_CC_KDTREE_LANE_TEST_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef KDTREE_CC_KDTREE_LANE_TEST_INL_H_
+#undef KDTREE_CC_KDTREE_LANE_TEST_INL_H_
+#else
+#define KDTREE_CC_KDTREE_LANE_TEST_INL_H_
+#endif
+
+#include <cmath>
+#include <cstdint>
+
+#include "cc/geometry/float_bits.h"
+#include "cc/geometry/watertight.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/mask_bits-inl.h"
+#include "cc/kdtree/packet_rays.h"
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace kdtree {
+namespace packet_internal {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+template <class D>
+HWY_INLINE hn::Vec<D> MaxAbs3(const hn::Vec<D> v[3]) {
+  return hn::Max(hn::Max(hn::Abs(v[0]), hn::Abs(v[1])), hn::Abs(v[2]));
+}
+
+// The lanes' watertight frames and tmin, loaded once per chunk of lanes.
+template <class D>
+struct Frames {
+  hn::Vec<D> ox, oy, oz, sx, sy, sz, shear_weight, tmin;
+  Frames(D d, const PacketRays& p, size_t base)
+      : ox(hn::Load(d, p.ox + base)),
+        oy(hn::Load(d, p.oy + base)),
+        oz(hn::Load(d, p.oz + base)),
+        sx(hn::Load(d, p.sx + base)),
+        sy(hn::Load(d, p.sy + base)),
+        sz(hn::Load(d, p.sz + base)),
+        shear_weight(hn::Load(d, p.shear_weight + base)),
+        tmin(hn::Load(d, p.tmin + base)) {}
+};
+
+// Triangle l of a leaf packet in every lane's sheared frame (watertight.h
+// Shear: x, y, dz and the edge functions e) and the edge functions' error
+// bound (EdgeErrorBound).
+template <class D>
+struct LaneShear {
+  hn::Vec<D> x[3], y[3], dz[3], e[3], bound;
+};
+
+template <class D>
+HWY_INLINE LaneShear<D> ShearLanes(D d, const Frames<D>& f, const Group& g, const float* packet,
+                                   int l) {
+  using V = hn::Vec<D>;
+  LaneShear<D> s;
+  for (int v = 0; v < 3; ++v) {
+    const float* q = packet + 3 * v * kPacketLanes + l;
+    s.dz[v] = hn::Sub(hn::Set(d, q[g.kz * kPacketLanes]), f.oz);
+    s.x[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.kx * kPacketLanes]), f.ox), hn::Mul(f.sx, s.dz[v]));
+    s.y[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.ky * kPacketLanes]), f.oy), hn::Mul(f.sy, s.dz[v]));
+  }
+  s.e[0] = hn::Sub(hn::Mul(s.x[2], s.y[1]), hn::Mul(s.y[2], s.x[1]));
+  s.e[1] = hn::Sub(hn::Mul(s.x[0], s.y[2]), hn::Mul(s.y[0], s.x[2]));
+  s.e[2] = hn::Sub(hn::Mul(s.x[1], s.y[0]), hn::Mul(s.y[1], s.x[0]));
+  const V lmax = hn::Max(MaxAbs3<D>(s.x), MaxAbs3<D>(s.y));
+  const V depth = hn::Mul(
+      hn::Add(MaxAbs3<D>(s.dz), hn::Set(d, watertight_internal::kEdgeBoundMinDepth)),
+      f.shear_weight);
+  s.bound = hn::Add(hn::Mul(hn::Set(d, watertight_internal::kEdgeBoundRel),
+                            hn::Mul(lmax, hn::Add(lmax, depth))),
+                    hn::Set(d, watertight_internal::kEdgeBoundAbs));
+  return s;
+}
+
+// The lanes whose edge functions certainly disagree in sign (SignsDisagree).
+template <class D>
+HWY_INLINE uint32_t DisagreeLanes(D d, const LaneShear<D>& s) {
+  const auto e_max = hn::Max(hn::Max(s.e[0], s.e[1]), s.e[2]);
+  const auto e_min = hn::Min(hn::Min(s.e[0], s.e[1]), s.e[2]);
+  return Bits(d, hn::And(hn::Gt(e_max, s.bound), hn::Lt(e_min, hn::Neg(s.bound))));
+}
+
+// The lanes whose three vertex depths z = sz dz are negative (the test's
+// "behind" rejection; it applies to lanes with tmin >= 0 only).
+template <class D>
+HWY_INLINE uint32_t BehindLanes(D d, const Frames<D>& f, const LaneShear<D>& s) {
+  const auto zero = hn::Zero(d);
+  return Bits(d, hn::And(hn::And(hn::Lt(hn::Mul(f.sz, s.dz[0]), zero),
+                                 hn::Lt(hn::Mul(f.sz, s.dz[1]), zero)),
+                         hn::Lt(hn::Mul(f.sz, s.dz[2]), zero)));
+}
+
+// The lanes (rays) that certainly miss the triangle of s; `behind`: the lanes
+// with tmin >= 0 the behind rejection is worth trying on.
+template <class D>
+HWY_INLINE uint32_t RejectRays(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t behind) {
+  uint32_t reject = DisagreeLanes(d, s);
+  if (behind != 0) reject |= BehindLanes(d, f, s) & behind;
+  return reject;
+}
+
+// What FinishLanes found: the lanes with a hit (t, u, v at the lane's index)
+// and the lanes left to the scalar test.
+struct LaneHits {
+  uint32_t hit = 0, scalar = 0;
+  HWY_ALIGN float t[kLanes];
+  HWY_ALIGN float u[kLanes];
+  HWY_ALIGN float v[kLanes];
+};
+
+// IntersectTriangleWatertight for `lanes` (behind: the lanes with tmin >= 0;
+// tmax: each lane's tmax, the best hit's t so far), the triangle's shear s.
+// A lane in neither out->hit nor out->scalar misses.
+template <class D>
+HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t lanes,
+                            uint32_t behind, const float* tmax, LaneHits* out) {
+#if HWY_TARGET == HWY_SCALAR
+  out->hit = 0;
+  out->scalar = lanes;  // no half vectors: the scalar test does it all
+  (void)d, (void)f, (void)s, (void)behind, (void)tmax;
+#else
+  using V = hn::Vec<D>;
+  lanes &= ~DisagreeLanes(d, s);
+  const V z[3] = {hn::Mul(f.sz, s.dz[0]), hn::Mul(f.sz, s.dz[1]), hn::Mul(f.sz, s.dz[2])};
+  const auto zero = hn::Zero(d);
+  lanes &= ~(Bits(d, hn::And(hn::And(hn::Lt(z[0], zero), hn::Lt(z[1], zero)),
+                             hn::Lt(z[2], zero))) & behind);
+  const uint32_t decided = Bits(d, hn::And(hn::And(hn::Gt(hn::Abs(s.e[0]), s.bound),
+                                                   hn::Gt(hn::Abs(s.e[1]), s.bound)),
+                                           hn::Gt(hn::Abs(s.e[2]), s.bound)));
+  out->scalar = lanes & ~decided;
+  out->hit = 0;
+  lanes &= decided;
+  if (lanes == 0) return;
+  // Finish's inputs, per lane, in float.
+  const V max_x = MaxAbs3<D>(s.x), max_y = MaxAbs3<D>(s.y), max_z = MaxAbs3<D>(z);
+  const V max_abs_kz = MaxAbs3<D>(s.dz);
+  const V min_z = hn::Min(hn::Min(z[0], z[1]), z[2]);
+  const V t_max = hn::Load(d, tmax);
+  const hn::Half<D> dh;
+  const hn::Repartition<double, D> dd;
+  using VD = hn::Vec<decltype(dd)>;
+  const size_t half = hn::Lanes(dh);
+  const uint32_t half_bits = (1u << half) - 1;
+  for (size_t h = 0; h < 2; ++h) {
+    const uint32_t mine = (lanes >> (h * half)) & half_bits;
+    if (mine == 0) continue;
+    const auto wide = [&](V v) {
+      return h == 0 ? hn::PromoteTo(dd, hn::LowerHalf(dh, v)) : hn::PromoteTo(dd, hn::UpperHalf(dh, v));
+    };
+    const auto narrow = [&](V v) { return h == 0 ? hn::LowerHalf(dh, v) : hn::UpperHalf(dh, v); };
+    const VD e0 = wide(s.e[0]), e1 = wide(s.e[1]), e2 = wide(s.e[2]);
+    const VD det = hn::Add(hn::Add(e0, e1), e2);
+    const VD big_t = hn::Add(hn::Add(hn::Mul(e0, wide(z[0])), hn::Mul(e1, wide(z[1]))),
+                             hn::Mul(e2, wide(z[2])));
+    const VD inv_det = hn::Div(hn::Set(dd, 1.0), det);
+    const auto tt = hn::DemoteTo(dh, hn::Mul(big_t, inv_det));
+    const uint32_t in_range =
+        Bits(dh, hn::And(hn::Le(tt, narrow(t_max)), hn::Lt(tt, hn::Set(dh, INFINITY))));
+    // The rounding bounds (Finish): a projected area within rounding of
+    // zero, or a triangle spanning the origin's depth, goes to the scalar
+    // test; else t > tmin decides.
+    const VD mx = wide(max_x), my = wide(max_y);
+    const VD delta_x = hn::Mul(hn::Set(dd, double(Gamma(5))), hn::Add(mx, wide(max_abs_kz)));
+    const VD delta_y = hn::Mul(hn::Set(dd, double(Gamma(5))), hn::Add(my, wide(max_abs_kz)));
+    const VD delta_e = hn::Mul(
+        hn::Set(dd, 2.0),
+        hn::Add(hn::Add(hn::Mul(hn::Mul(hn::Set(dd, double(Gamma(2))), mx), my),
+                        hn::Mul(delta_y, mx)),
+                hn::Mul(delta_x, my)));
+    const uint32_t near_zero =
+        Bits(dd, hn::Le(hn::Abs(det), hn::Mul(hn::Set(dd, 3.0), delta_e)));
+    const VD delta_z = hn::Mul(hn::Set(dd, double(Gamma(3))), wide(max_z));
+    const uint32_t front = Bits(dd, hn::Gt(wide(min_z), delta_z));
+    const uint32_t beyond_tmin = Bits(dh, hn::Gt(tt, narrow(f.tmin)));
+    const uint32_t go_on = mine & in_range;
+    const uint32_t scalar = go_on & (near_zero | ~front);
+    const uint32_t hit = go_on & ~scalar & beyond_tmin;
+    out->scalar |= scalar << (h * half);
+    out->hit |= hit << (h * half);
+    if (hit == 0) continue;
+    hn::StoreU(tt, dh, out->t + h * half);
+    hn::StoreU(hn::DemoteTo(dh, hn::Mul(e1, inv_det)), dh, out->u + h * half);
+    hn::StoreU(hn::DemoteTo(dh, hn::Mul(e2, inv_det)), dh, out->v + h * half);
+  }
+#endif
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace packet_internal
+}  // namespace kdtree
+HWY_AFTER_NAMESPACE();
+
+#endif  // KDTREE_CC_KDTREE_LANE_TEST_INL_H_

@@ -1,0 +1,142 @@
+// The packet kernel's per-lane watertight test (lane_test-inl.h) on the cases
+// that pick its branches: rays through interior points (the vector path),
+// exactly through shared vertices and edges (undecided signs: the scalar
+// test), duplicated triangles (ties at equal t, broken by Closer), triangles
+// of zero area and slivers, and rays leaving a point of the surface
+// (triangles across the origin's depth) or lying in its plane. Every lane must
+// be the single-ray traversal's result bit for bit, and brute force's, on
+// every kernel width this machine runs. (Rays near a zero-area triangle have
+// undecided signs: decided edge functions cannot agree on it, as its exact
+// edge functions sum to zero; so the vector path's near-zero area check,
+// which mirrors Finish's, sends no lane of these to the scalar test.)
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/config.h"
+#include "cc/kdtree/ray_packet.h"
+#include "cc/kdtree/traversal.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+bool Bitwise(const Hit& a, const Hit& b) {
+  return a.tri == b.tri && std::memcmp(&a.t, &b.t, sizeof(float)) == 0 &&
+         std::memcmp(&a.u, &b.u, sizeof(float)) == 0 &&
+         std::memcmp(&a.v, &b.v, sizeof(float)) == 0;
+}
+
+// A grid of n x n quads (two triangles each) in the plane z = 0, with
+// shared edges; every fifth triangle again (a tie at every t), reversed
+// every other time; a zero-area triangle and a sliver in each row.
+TriangleSoup Grid(int n) {
+  TriangleSoup s;
+  auto p = [](int i, int j) { return Vec3(0.37f * i, 0.29f * j, 0.0f); };
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      s.Add(p(i, j), p(i + 1, j), p(i + 1, j + 1));
+      s.Add(p(i, j), p(i + 1, j + 1), p(i, j + 1));
+      if ((i + j) % 5 == 0) {
+        if (i % 2) {
+          s.Add(p(i, j), p(i + 1, j + 1), p(i + 1, j));
+        } else {
+          s.Add(p(i, j), p(i + 1, j), p(i + 1, j + 1));
+        }
+      }
+    }
+    // Zero area: c is exactly the midpoint of a and b (the shear may round
+    // the three apart); a sliver beside it.
+    const float y = 0.5f * j;
+    const Vec3 a(0.25f, y, 0.5f), b(3.25f, y + 1.5f, -1.0f), c(1.75f, y + 0.75f, -0.25f);
+    s.Add(a, b, c);
+    s.Add(a, b, c + Vec3(0, 0, 1e-6f));
+  }
+  return s;
+}
+
+// Whether triangle t is one of Grid's zero-area or sliver triangles.
+bool Degenerate(const TriangleSoup& s, size_t t) { return s.a(t).x == 0.25f; }
+
+// Packets of rays from one point above the grid to its vertices, edge
+// midpoints and interior points; from points on the grid up, down and
+// along it; with tmin 0 and above.
+std::vector<Ray> Rays(const TriangleSoup& s, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<Ray> rays;
+  for (int k = 0; k < 400; ++k) {
+    const Vec3 eye(4 * unit(rng) - 1, 4 * unit(rng) - 1, 0.5f + 3 * unit(rng));
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      size_t t = rng() % s.size();
+      while (k % 2 == 0 && l % 2 == 0 && !Degenerate(s, t)) t = rng() % s.size();
+      const float w = unit(rng);
+      Vec3 target;
+      switch ((k + l) % 3) {
+        case 0: target = s.v[3 * t + l % 3]; break;                     // a vertex
+        case 1: target = s.a(t) * w + s.b(t) * (1 - w); break;          // an edge
+        default: target = (s.a(t) + s.b(t) + s.c(t)) * (1.0f / 3); break;  // inside
+      }
+      rays.push_back(Ray{eye, target - eye});
+    }
+  }
+  for (int k = 0; k < 200; ++k) {
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      const size_t t = rng() % s.size();
+      const float u = unit(rng) * 0.5f, v = unit(rng) * 0.5f;
+      const Vec3 o = s.a(t) * (1 - u - v) + s.b(t) * u + s.c(t) * v;
+      Vec3 d(unit(rng) - 0.5f, unit(rng) - 0.5f, k % 4 == 0 ? 0.0f : unit(rng) - 0.5f);
+      if (k % 2) d.z = std::fabs(d.z) + 0.01f;
+      Ray r{o, d};
+      r.tmin = k % 3 == 0 ? 0.0f : 1e-4f;
+      rays.push_back(r);
+    }
+  }
+  return rays;
+}
+
+TEST(LaneTest, EveryBranchOnEveryKernelWidth) {
+  const TriangleSoup soup = Grid(14);
+  const BruteForce bf(soup);
+  const std::vector<Ray> rays = Rays(soup, 5);
+  for (const std::string& preset : {"sah-packet", "clipping-pruning"}) {
+    absl::StatusOr<Config> config = Preset(preset);
+    ASSERT_TRUE(config.ok());
+    absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
+    ASSERT_TRUE(tree.ok()) << tree.status();
+    ASSERT_TRUE(PacketPathApplies(*tree));
+    std::vector<Hit> single(rays.size());
+    size_t brute = 0, hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      single[i] = Intersect(*tree, rays[i]);
+      const Hit ref = bf.Intersect(rays[i]);
+      brute += !(single[i].tri == ref.tri && (!ref.hit() || single[i].t == ref.t));
+      hits += ref.hit();
+    }
+    EXPECT_EQ(brute, 0u) << preset;
+    EXPECT_GT(hits, rays.size() / 3) << preset;
+    for (const std::string& target : PacketKernelTargets()) {
+      const ScopedPacketKernelTarget scoped(target);
+      ASSERT_TRUE(scoped.ok()) << target;
+      size_t closest = 0, any = 0;
+      for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
+        Hit out[kRayPacketSize];
+        bool occ[kRayPacketSize];
+        IntersectPacket(*tree, &rays[i], kRayPacketSize, out);
+        OccludedPacket(*tree, &rays[i], kRayPacketSize, nullptr, occ);
+        for (int l = 0; l < kRayPacketSize; ++l) {
+          closest += !Bitwise(out[l], single[i + l]);
+          any += occ[l] != Occluded(*tree, rays[i + l]);
+        }
+      }
+      EXPECT_EQ(closest, 0u) << preset << " on " << target;
+      EXPECT_EQ(any, 0u) << preset << " on " << target;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kdtree
