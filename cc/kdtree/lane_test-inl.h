@@ -3,10 +3,12 @@
 // (ray_packet_kernel.cc); per target like it (Highway's per-target include
 // guard).
 //
-// ShearLanes and RejectRays are the test's first step and edge bound with the
-// triangle broadcast (the same IEEE operations in the same order as Shear and
-// EdgeErrorBound: packet_reject.h does the same for four triangles and one
-// ray), so a lane RejectRays sets is a lane the test rejects. FinishLanes then
+// ShearLanes and RejectRays are the test's first step and edge bound, each
+// lane with its own ray and triangle (one triangle for all lanes, or a few
+// rays against a leaf packet's four triangles), with the same IEEE operations
+// in the same order as Shear and EdgeErrorBound (packet_reject.h does the
+// same for four triangles and one ray), so a lane RejectRays sets is a lane
+// the test rejects. FinishLanes then
 // runs the rest of the test for the common case, a ray whose three edge
 // functions have decided, agreeing signs and a triangle in front of its
 // origin: watertight.h's Finish, in double vectors with Finish's operations
@@ -46,6 +48,7 @@ HWY_INLINE hn::Vec<D> MaxAbs3(const hn::Vec<D> v[3]) {
 template <class D>
 struct Frames {
   hn::Vec<D> ox, oy, oz, sx, sy, sz, shear_weight, tmin;
+  Frames() = default;
   Frames(D d, const PacketRays& p, size_t base)
       : ox(hn::Load(d, p.ox + base)),
         oy(hn::Load(d, p.oy + base)),
@@ -55,26 +58,74 @@ struct Frames {
         sz(hn::Load(d, p.sz + base)),
         shear_weight(hn::Load(d, p.shear_weight + base)),
         tmin(hn::Load(d, p.tmin + base)) {}
+  // Lane j of the result is lane idx[j] of this (idx: SetTableIndices).
+  template <class I>
+  Frames Permuted(I idx) const {
+    Frames f;
+    f.ox = hn::TableLookupLanes(ox, idx);
+    f.oy = hn::TableLookupLanes(oy, idx);
+    f.oz = hn::TableLookupLanes(oz, idx);
+    f.sx = hn::TableLookupLanes(sx, idx);
+    f.sy = hn::TableLookupLanes(sy, idx);
+    f.sz = hn::TableLookupLanes(sz, idx);
+    f.shear_weight = hn::TableLookupLanes(shear_weight, idx);
+    f.tmin = hn::TableLookupLanes(tmin, idx);
+    return f;
+  }
 };
 
-// Triangle l of a leaf packet in every lane's sheared frame (watertight.h
-// Shear: x, y, dz and the edge functions e) and the edge functions' error
-// bound (EdgeErrorBound).
+// A triangle's vertices per lane, the group's axes kx, ky, kz of vertex v in
+// x[v], y[v], z[v].
+template <class D>
+struct LaneTriangle {
+  hn::Vec<D> x[3], y[3], z[3];
+};
+
+// Triangle l of a leaf packet in every lane (one triangle, a ray per lane).
+template <class D>
+HWY_INLINE LaneTriangle<D> BroadcastTriangle(D d, const Group& g, const float* packet, int l) {
+  LaneTriangle<D> t;
+  for (int v = 0; v < 3; ++v) {
+    const float* q = packet + 3 * v * kPacketLanes + l;
+    t.x[v] = hn::Set(d, q[g.kx * kPacketLanes]);
+    t.y[v] = hn::Set(d, q[g.ky * kPacketLanes]);
+    t.z[v] = hn::Set(d, q[g.kz * kPacketLanes]);
+  }
+  return t;
+}
+
+// The leaf packet's kPacketLanes triangles in every block of kPacketLanes
+// lanes: lane j holds triangle j % kPacketLanes (a few rays, four triangles
+// each).
+template <class D>
+HWY_INLINE LaneTriangle<D> RepeatTriangles(D d, const Group& g, const float* packet) {
+  static_assert(kPacketLanes == 4, "one leaf packet per 128-bit block");
+  LaneTriangle<D> t;
+  for (int v = 0; v < 3; ++v) {
+    const float* q = packet + 3 * v * kPacketLanes;
+    t.x[v] = hn::LoadDup128(d, q + g.kx * kPacketLanes);
+    t.y[v] = hn::LoadDup128(d, q + g.ky * kPacketLanes);
+    t.z[v] = hn::LoadDup128(d, q + g.kz * kPacketLanes);
+  }
+  return t;
+}
+
+// The triangle in every lane's sheared frame (watertight.h Shear: x, y, dz
+// and the edge functions e) and the edge functions' error bound
+// (EdgeErrorBound).
 template <class D>
 struct LaneShear {
   hn::Vec<D> x[3], y[3], dz[3], e[3], bound;
 };
 
 template <class D>
-HWY_INLINE LaneShear<D> ShearLanes(D d, const Frames<D>& f, const Group& g, const float* packet,
-                                   int l) {
+HWY_INLINE LaneShear<D> ShearLanes(D d, const Frames<D>& f, const LaneTriangle<D>& t) {
   using V = hn::Vec<D>;
   LaneShear<D> s;
   for (int v = 0; v < 3; ++v) {
-    const float* q = packet + 3 * v * kPacketLanes + l;
-    s.dz[v] = hn::Sub(hn::Set(d, q[g.kz * kPacketLanes]), f.oz);
-    s.x[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.kx * kPacketLanes]), f.ox), hn::Mul(f.sx, s.dz[v]));
-    s.y[v] = hn::Sub(hn::Sub(hn::Set(d, q[g.ky * kPacketLanes]), f.oy), hn::Mul(f.sy, s.dz[v]));
+    s.dz[v] = hn::Sub(t.z[v], f.oz);
+    s.x[v] = hn::Sub(hn::Sub(t.x[v], f.ox), hn::Mul(f.sx, s.dz[v]));
+    s.y[v] = hn::Sub(hn::Sub(t.y[v], f.oy), hn::Mul(f.sy, s.dz[v]));
   }
   s.e[0] = hn::Sub(hn::Mul(s.x[2], s.y[1]), hn::Mul(s.y[2], s.x[1]));
   s.e[1] = hn::Sub(hn::Mul(s.x[0], s.y[2]), hn::Mul(s.y[0], s.x[2]));
