@@ -1,0 +1,183 @@
+// A leaf's triangles against the packet kernel's lanes (ray_packet_kernel.cc),
+// per target like it (Highway's per-target include guard): TestLeaf, a
+// triangle at a time against every lane, and TestLeafFew, a leaf reached by
+// few rays, each ray against a leaf packet's four triangles at once. Both
+// test with lane_test-inl.h and record hits with the single-ray traversal's
+// Closer.
+#if defined(KDTREE_CC_KDTREE_LEAF_TEST_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef KDTREE_CC_KDTREE_LEAF_TEST_INL_H_
+#undef KDTREE_CC_KDTREE_LEAF_TEST_INL_H_
+#else
+#define KDTREE_CC_KDTREE_LEAF_TEST_INL_H_
+#endif
+
+#include <cstdint>
+#include <cstring>
+
+#include "cc/geometry/ray.h"
+#include "cc/geometry/watertight.h"
+#include "cc/kdtree/lane_test-inl.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/mask_bits-inl.h"
+#include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/tree.h"
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace kdtree {
+namespace packet_internal {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Lane i's hit on triangle `tri` at t (u, v), if it is the closest so far
+// (any hit: the lane is done).
+template <bool kAnyHit>
+HWY_INLINE void Record(int i, uint32_t tri, float t, float u, float v, Hit* h, uint32_t* lanes,
+                       uint32_t* found, float* best_t) {
+  if (!kAnyHit && !Closer(t, tri, *h)) return;
+  h->tri = tri;
+  h->t = t;
+  h->u = u;
+  h->v = v;
+  *found |= 1u << i;
+  if (kAnyHit) {
+    *lanes &= ~(1u << i);
+  } else {
+    best_t[i] = t;
+  }
+}
+
+// IntersectTriangleWatertight itself for ray r of the packet and triangle l
+// of the leaf packet (with the ray's best hit so far as tmax); records a hit
+// for lane i (r - base).
+template <bool kAnyHit>
+HWY_INLINE void ScalarTest(const PacketRays& p, const Group& g, const float* packet, int l,
+                           uint32_t tri, size_t base, int i, uint32_t* lanes, uint32_t* found,
+                           float* best_t, Hit* best) {
+  const size_t r = base + i;
+  const float* q = packet + l;
+  const Vec3 a(q[0 * 4], q[1 * 4], q[2 * 4]);
+  const Vec3 b(q[3 * 4], q[4 * 4], q[5 * 4]);
+  const Vec3 c(q[6 * 4], q[7 * 4], q[8 * 4]);
+  float t, u, v;
+  const WatertightRay w = LaneRay(p, g.kx, g.ky, g.kz, static_cast<int>(r));
+  if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], best[r].t, &t, &u, &v)) {
+    Record<kAnyHit>(i, tri, t, u, v, &best[r], lanes, found, best_t);
+  }
+}
+
+// The lanes of `lanes` the leaf's triangles are tested against; updates best
+// and best_t (closest hit) or `lanes` and *found (any hit: a lane with a hit
+// is done).
+template <bool kAnyHit, class D>
+HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
+                         const Group& g, size_t base, uint32_t first, uint32_t* lanes,
+                         uint32_t* found, float* best_t, Hit* best) {
+  const hn::RebindToUnsigned<D> du;
+  const bool origins = p.has_origins;
+  const uint32_t behind = p.behind >> base;
+  const float* packet = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
+  for (;;) {
+    uint32_t id[kPacketLanes];
+    std::memcpy(id, packet + kPacketIds, sizeof(id));
+    const bool last = (id[0] & kLastPacket) != 0;
+    id[0] &= ~kLastPacket;
+    for (int l = 0; l < kPacketLanes && *lanes != 0; ++l) {
+      if (id[l] == kPadLane) break;  // pads only follow a leaf's last triangle
+      const LaneShear<D> s = ShearLanes(d, f, BroadcastTriangle(d, g, packet, l));
+      uint32_t rays = *lanes & ~RejectRays(d, f, s, behind & *lanes);
+      if (rays != 0 && origins) {
+        rays &= ~Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l])));
+      }
+      if (rays == 0) continue;
+      LaneHits lh;
+      FinishLanes(d, f, s, rays, behind, best_t, &lh);
+      for (uint32_t m = lh.hit; m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        Record<kAnyHit>(i, id[l], lh.t[i], lh.u[i], lh.v[i], &best[base + i], lanes, found, best_t);
+      }
+      for (uint32_t m = lh.scalar; m != 0; m &= m - 1) {
+        ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, __builtin_ctz(m), lanes, found, best_t,
+                            best);
+      }
+    }
+    if (last || *lanes == 0) return;
+    packet += kPacketFloats;
+  }
+}
+
+// TestLeaf for at most Lanes(d) / kPacketLanes rays: each block of
+// kPacketLanes vector lanes holds one ray (its frame permuted there) against
+// the leaf packet's kPacketLanes triangles, so a leaf packet takes one vector
+// test instead of one per triangle. The triangles of a leaf packet are
+// tested at once, not one after the other; a hit beyond the ray's best so
+// far is dropped by Record's Closer, so every ray ends with the same closest
+// hit (any hit: a ray leaves at its first hit; the others found with it in
+// the same vector are dropped).
+template <bool kAnyHit, class D>
+HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
+                            const Group& g, size_t base, uint32_t first, uint32_t* lanes,
+                            uint32_t* found, float* best_t, Hit* best) {
+  const hn::RebindToUnsigned<D> du;
+  const size_t n = hn::Lanes(d);
+  // Block k holds ray ray[k]; blocks past the rays repeat the last one.
+  int ray[kLanes / kPacketLanes];
+  int rays_in = 0;
+  for (uint32_t m = *lanes; m != 0; m &= m - 1) ray[rays_in++] = __builtin_ctz(m);
+  HWY_ALIGN int32_t index[kLanes];
+  for (size_t j = 0; j < n; ++j) {
+    const int k = static_cast<int>(j / kPacketLanes);
+    index[j] = ray[k < rays_in ? k : rays_in - 1];
+  }
+  constexpr uint32_t kBlock = (1u << kPacketLanes) - 1;
+  uint32_t behind = 0;
+  for (int k = 0; k < rays_in; ++k) {
+    if ((p.behind >> (base + ray[k])) & 1) behind |= kBlock << (k * kPacketLanes);
+  }
+  const auto perm = hn::SetTableIndices(d, index);
+  const Frames<D> pf = f.Permuted(perm);
+  const auto origin =
+      hn::TableLookupLanes(hn::Load(du, p.origin + base), hn::SetTableIndices(du, index));
+  HWY_ALIGN float tmax[kLanes];
+  const float* packet = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
+  for (;;) {
+    HWY_ALIGN uint32_t id[kPacketLanes];
+    std::memcpy(id, packet + kPacketIds, sizeof(id));
+    const bool last = (id[0] & kLastPacket) != 0;
+    id[0] &= ~kLastPacket;
+    const auto ids = hn::LoadDup128(du, id);
+    uint32_t live = 0;  // the blocks of rays still looking (any hit: some are done)
+    for (int k = 0; k < rays_in; ++k) {
+      if ((*lanes >> ray[k]) & 1) live |= kBlock << (k * kPacketLanes);
+    }
+    live &= ~Bits(du, hn::Eq(ids, hn::Set(du, kPadLane)));
+    const LaneShear<D> s = ShearLanes(d, pf, RepeatTriangles(d, g, packet));
+    uint32_t rays = live & ~RejectRays(d, pf, s, behind & live);
+    if (rays != 0 && p.has_origins) rays &= ~Bits(du, hn::Eq(origin, ids));
+    if (rays != 0) {
+      hn::Store(hn::TableLookupLanes(hn::Load(d, best_t), perm), d, tmax);
+      LaneHits lh;
+      FinishLanes(d, pf, s, rays, behind, tmax, &lh);
+      for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
+        const int j = __builtin_ctz(m);
+        const int i = index[j], l = j % kPacketLanes;
+        if (kAnyHit && !((*lanes >> i) & 1)) continue;  // found already
+        if ((lh.hit >> j) & 1) {
+          Record<kAnyHit>(i, id[l], lh.t[j], lh.u[j], lh.v[j], &best[base + i], lanes, found,
+                          best_t);
+        } else {
+          ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, i, lanes, found, best_t, best);
+        }
+      }
+    }
+    if (last || *lanes == 0) return;
+    packet += kPacketFloats;
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace packet_internal
+}  // namespace kdtree
+HWY_AFTER_NAMESPACE();
+
+#endif  // KDTREE_CC_KDTREE_LEAF_TEST_INL_H_
