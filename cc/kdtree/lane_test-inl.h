@@ -10,12 +10,12 @@
 // same for four triangles and one ray), so a lane RejectRays sets is a lane
 // the test rejects. FinishLanes then
 // runs the rest of the test for the common case, a ray whose three edge
-// functions have decided, agreeing signs and a triangle in front of its
-// origin: watertight.h's Finish, in double vectors with Finish's operations
-// in Finish's order (each IEEE operation is correctly rounded, so every lane
-// gets the scalar test's floats: t, u, v bit for bit). The rare lanes (an
-// undecided sign, a projected area within rounding of zero, a triangle that
-// spans the origin's depth) are returned for the scalar test itself.
+// functions have decided, agreeing signs: watertight.h's Finish, in double
+// vectors with Finish's operations in Finish's order (each IEEE operation is
+// correctly rounded, so every lane gets the scalar test's floats: t, u, v bit
+// for bit). The rare lanes (an undecided sign, a projected area within
+// rounding of zero, a triangle across the origin's depth with t within
+// rounding of tmin) are returned for the scalar test itself.
 #if defined(KDTREE_CC_KDTREE_LANE_TEST_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef KDTREE_CC_KDTREE_LANE_TEST_INL_H_
 #undef KDTREE_CC_KDTREE_LANE_TEST_INL_H_
@@ -238,12 +238,25 @@ HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint
                 hn::Mul(delta_x, my)));
     const uint32_t near_zero =
         Bits(dd, hn::Le(hn::Abs(det), hn::Mul(hn::Set(dd, 3.0), delta_e)));
-    const VD delta_z = hn::Mul(hn::Set(dd, double(Gamma(3))), wide(max_z));
+    const VD mz = wide(max_z);
+    const VD delta_z = hn::Mul(hn::Set(dd, double(Gamma(3))), mz);
     const uint32_t front = Bits(dd, hn::Gt(wide(min_z), delta_z));
     const uint32_t beyond_tmin = Bits(dh, hn::Gt(tt, narrow(f.tmin)));
-    const uint32_t go_on = mine & in_range;
-    const uint32_t scalar = go_on & (near_zero | ~front);
-    const uint32_t hit = go_on & ~scalar & beyond_tmin;
+    // A triangle across the origin's depth: t against tmin outside the bound
+    // on its rounding; inside it, the scalar test decides exactly.
+    const VD max_e = wide(MaxAbs3<D>(s.e));
+    const VD delta_t = hn::Mul(
+        hn::Mul(hn::Set(dd, 3.0),
+                hn::Add(hn::Add(hn::Mul(hn::Mul(hn::Set(dd, double(Gamma(3))), max_e), mz),
+                                hn::Mul(delta_e, mz)),
+                        hn::Mul(delta_z, max_e))),
+        hn::Abs(inv_det));
+    const VD t_wide = hn::PromoteTo(dd, tt), tmin = wide(f.tmin);
+    const uint32_t below = Bits(dd, hn::Le(t_wide, hn::Sub(tmin, delta_t)));
+    const uint32_t above = Bits(dd, hn::Gt(t_wide, hn::Add(tmin, delta_t)));
+    const uint32_t go_on = mine & in_range & ~near_zero;
+    const uint32_t scalar = (mine & in_range & near_zero) | (go_on & ~front & ~below & ~above);
+    const uint32_t hit = go_on & ((front & beyond_tmin) | (~front & above));
     out->scalar |= scalar << (h * half);
     out->hit |= hit << (h * half);
     if (hit == 0) continue;

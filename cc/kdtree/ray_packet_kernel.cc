@@ -23,9 +23,8 @@
 // runs on all lanes at once with its own IEEE operations in its own order
 // (lane_test-inl.h): the common rejection, whose set lanes are certain
 // misses, then the rest of the test in double vectors for the lanes with
-// decided signs; the rare lanes left (undecided signs, near-zero area, a
-// triangle across the origin's depth) get the scalar
-// IntersectTriangleWatertight itself.
+// decided signs; the rare lanes left (undecided signs, near-zero area, t
+// within rounding of tmin) get the scalar IntersectTriangleWatertight itself.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cc/kdtree/ray_packet_kernel.cc"
 // Every target the compiler can build, also under -march=native, so that the
