@@ -47,6 +47,11 @@ BUILD_WORKSPACE_DIRECTORY="$T/repo" BUILD_WORKING_DIRECTORY="$T/elsewhere" \
   "$BIN/render_bench" --scenes=tiny --cache_dir= --preset=clipping-pruning --threads=1,2 \
   --repeats=2 --warmup=1 --variants=kd,kd_packet --embree=medium --out=render.jsonl \
   > render.stdout
+# A tree with an environment file on top, traced with packets (--env_packets).
+printf 'KDTree {\n    traversalCost 30\n}\n' > kt30.env
+"$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1 \
+  --repeats=1 --warmup=0 --variants=kd_packet_origin --envs=kt30.env --env_packets \
+  --embree=off --out=env.jsonl > /dev/null
 if "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --repeats=0 > /dev/null 2> err.txt; then
   echo "--repeats=0 accepted"; exit 1
 fi
@@ -114,6 +119,11 @@ for r in render:
     check(isinstance(v["embree_disagreements"], dict), "render: Embree disagreements")
     check(r["timing"]["rounds"] == 2 and r["timing"]["warmup"] == 1, "render: timing")
     check_provenance(r, "render")
+env = [json.loads(l) for l in open("env.jsonl")]
+check(len(env) == 1 and list(env[0]["tracers"]) == ["kd_packet_origin", "env:kt30.env"],
+      "env: the preset's tree and the environment file's")
+check(env[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_packet_origin": 0,
+                                                             "env:kt30.env": 0}, "env: variants")
 print("ok")
 PY
 grep -q "repeats" err.txt

@@ -53,7 +53,8 @@
 // AVX-512 machine), validated like the others, to compare kernel widths on
 // the same rays. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
-// kd traversal in the same rounds: constants are tuned on the same rays and
+// kd traversal (--env_packets: as kd_packet_origin) in the same rounds:
+// constants are tuned on the same rays and
 // under the same load, and every such tree must give kd's exact hits.
 #include <algorithm>
 #include <chrono>
@@ -115,6 +116,10 @@ ABSL_FLAG(std::string, envs, "",
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
           "a tree's constants on the same rays; its image must equal kd's).");
 ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
+ABSL_FLAG(bool, env_packets, false,
+          "Trace the --envs trees as kd_packet_origin (packets of 4x4 pixels, shadow rays "
+          "leaving their origin triangle) instead of as kd: to tune a tree for the packet "
+          "kernel.");
 ABSL_FLAG(bool, embree_packets, true,
           "Also time Embree with packets of 4x4 pixels (rtcIntersect16 / rtcOccluded16) as "
           "tracer embree_packet, the bar for kd_packet.");
@@ -216,7 +221,10 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     proto.back().name = name;
     if (name.size() > v.size()) proto.back().kernel = name.substr(v.size() + 1);
   }
-  for (const EnvTree& e : env_trees) proto.emplace_back(e.name, e.tracer.get());
+  const bool env_packets = absl::GetFlag(FLAGS_env_packets);
+  for (const EnvTree& e : env_trees) {
+    proto.emplace_back(e.name, e.tracer.get(), env_packets, env_packets);
+  }
 
   // Validation (untimed).
   RenderOptions ropt;
