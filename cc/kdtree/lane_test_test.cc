@@ -9,6 +9,7 @@
 // undecided signs: decided edge functions cannot agree on it, as its exact
 // edge functions sum to zero; so the vector path's near-zero area check,
 // which mirrors Finish's, sends no lane of these to the scalar test.)
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <string>
@@ -61,8 +62,9 @@ TriangleSoup Grid(int n) {
 // Whether triangle t is one of Grid's zero-area or sliver triangles.
 bool Degenerate(const TriangleSoup& s, size_t t) { return s.a(t).x == 0.25f; }
 
-// Packets of rays from one point above the grid to its vertices, edge
-// midpoints and interior points; from points on the grid up, down and
+// Packets of rays from one point above the grid to vertices, edge points
+// and centroids of its triangles (every other ray of every other packet to
+// a zero-area triangle or a sliver); from points on the grid up, down and
 // along it; with tmin 0 and above.
 std::vector<Ray> Rays(const TriangleSoup& s, uint32_t seed) {
   std::mt19937 rng(seed);
