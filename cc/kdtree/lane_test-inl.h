@@ -8,9 +8,9 @@
 // rays against a leaf packet's four triangles), with the same IEEE operations
 // in the same order as Shear and EdgeErrorBound (packet_reject.h does the
 // same for four triangles and one ray), so a lane RejectRays sets is a lane
-// the test rejects. FinishLanes then
-// runs the rest of the test for the common case, a ray whose three edge
-// functions have decided, agreeing signs: watertight.h's Finish, in double
+// the test rejects. FinishLanes then runs the rest of the test for the
+// common case, a ray whose three edge functions have decided, agreeing
+// signs: watertight.h's Finish, in double
 // vectors with Finish's operations in Finish's order (each IEEE operation is
 // correctly rounded, so every lane gets the scalar test's floats: t, u, v bit
 // for bit). The rare lanes (an undecided sign, a projected area within
@@ -177,7 +177,8 @@ struct LaneHits {
 };
 
 // IntersectTriangleWatertight for `lanes` (behind: the lanes with tmin >= 0;
-// tmax: each lane's tmax, the best hit's t so far), the triangle's shear s.
+// tmax, aligned: each lane's tmax, its best hit's t so far), the triangle's
+// shear s.
 // A lane in neither out->hit nor out->scalar misses.
 template <class D>
 HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t lanes,
