@@ -3,7 +3,8 @@
 // exactly through shared vertices and edges (undecided signs: the scalar
 // test), duplicated triangles (ties at equal t, broken by Closer), triangles
 // of zero area and slivers, and rays leaving a point of the surface
-// (triangles across the origin's depth) or lying in its plane. Every lane must
+// (triangles across the origin's depth) or lying in its plane, and rays with
+// denormal direction components or none valid. Every lane must
 // be the single-ray traversal's result bit for bit, and brute force's, on
 // every kernel width this machine runs. (Rays near a zero-area triangle have
 // undecided signs: decided edge functions cannot agree on it, as its exact
@@ -94,6 +95,25 @@ std::vector<Ray> Rays(const TriangleSoup& s, uint32_t seed) {
       if (k % 2) d.z = std::fabs(d.z) + 0.01f;
       Ray r{o, d};
       r.tmin = k % 3 == 0 ? 0.0f : 1e-4f;
+      rays.push_back(r);
+    }
+  }
+  // Direction components below the smallest normal float (SanitizeRay makes
+  // them zeros of their sign), a direction of only such components (no
+  // ray), and invalid rays, among valid ones.
+  for (int k = 0; k < 40; ++k) {
+    for (int l = 0; l < kRayPacketSize; ++l) {
+      const size_t t = rng() % s.size();
+      // From a vertex's x or y (a split plane of many trees), nearly along it.
+      Vec3 eye(4 * unit(rng) - 1, 4 * unit(rng) - 1, 1.0f + unit(rng));
+      if (l % 4 == 0) eye.x = s.a(t).x;
+      if (l % 4 == 1) eye.y = s.a(t).y;
+      Ray r{eye, (s.a(t) + s.b(t) + s.c(t)) * (1.0f / 3) - eye};
+      const float tiny = (l % 2 ? -1 : 1) * 1e-40f;
+      if (l % 4 == 0) r.dir.x = tiny;
+      if (l % 4 == 1) r.dir.y = tiny;
+      if (l == 2) r.dir = Vec3(tiny, -tiny, tiny);
+      if (l == 6) r.tmin = 2, r.tmax = 1;
       rays.push_back(r);
     }
   }

@@ -71,6 +71,16 @@ struct Group {
   int kx = 0, ky = 1, kz = 2;
 };
 
+inline constexpr uint32_t kAllLanes = (1u << kLanes) - 1;
+
+// SanitizeRay (ray_check.h) for kLanes rays, in vectors: their components,
+// sanitized, into the lanes of p (org, dir, tmin, tmax; lanes without a
+// valid ray or with a zero direction component get those of the first valid
+// ray without one, else of the first valid ray) and p->behind; returns the
+// lanes with a valid ray, and in *zero those with a zero direction component.
+// p->ray is not written. Chosen at run time like TraceGroup.
+uint32_t LoadLanes(const Ray* rays, PacketRays* p, uint32_t* zero);
+
 // SetUpRay (ray_setup.h) for every lane from its ray's components (dir, org,
 // tmin, tmax; no direction component zero), with the same float operations:
 // fills the lanes' set-up and key; returns the lanes whose ray reaches the

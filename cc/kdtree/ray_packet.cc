@@ -3,6 +3,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
@@ -15,6 +16,7 @@ namespace {
 
 using packet_internal::Group;
 using packet_internal::PacketRays;
+using packet_internal::SetUpLanes;
 static_assert(packet_internal::kLanes == kRayPacketSize, "one packet, one PacketRays");
 
 bool TreeSupportsPackets(const KdTree& tree, const TraversalOptions& options) {
@@ -63,38 +65,32 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
 void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
              PacketRays* p) {
   assert(n >= 0 && n <= kRayPacketSize);
-  uint32_t valid = 0, zero = 0;
-  for (int i = 0; i < n; ++i) {
-    Ray ray = rays[i];
-    if (!SanitizeRay(&ray)) continue;
-    PutRay(ray, i, p);
-    valid |= 1u << i;
-    if (ray.dir.x == 0.0f || ray.dir.y == 0.0f || ray.dir.z == 0.0f) zero |= 1u << i;
+  // The n rays, then invalid ones (tmin > tmax).
+  std::memcpy(p->ray, rays, n * sizeof(Ray));
+  for (int i = n; i < kRayPacketSize; ++i) {
+    p->ray[i] = Ray{Vec3(0, 0, 0), Vec3(1, 1, 1)};
+    p->ray[i].tmin = 1.0f;
+    p->ray[i].tmax = 0.0f;
+  }
+  uint32_t zero = 0;
+  const uint32_t valid = packet_internal::LoadLanes(p->ray, p, &zero);
+  if (valid == 0) return;
+  for (uint32_t m = valid; m != 0; m &= m - 1) {
+    const int i = __builtin_ctz(m);
     p->origin[i] = origins[i];
     p->has_origins = p->has_origins || origins[i] != kNoHit;
-    if (ray.tmin >= 0.0f) p->behind |= 1u << i;
   }
-  if (valid == 0) return;
-  // Lanes without a valid ray (or with a zero direction component) compute
-  // on a copy of one without, then drop out (or are set up alone).
   const uint32_t plain = valid & ~zero;
-  const Ray& copy = p->ray[__builtin_ctz(plain != 0 ? plain : valid)];
-  for (int i = 0; i < kRayPacketSize; ++i) {
-    if (plain & (1u << i)) continue;
-    if (zero & (1u << i)) {
-      const Ray ray = p->ray[i];
-      PutRay(copy, i, p);
-      p->ray[i] = ray;  // (p->ray alone: its lane is set up below)
-    } else {
-      PutRay(copy, i, p);
-    }
-  }
   p->live = SetUpLanes(tree.bounds, p) & plain;
+  // A ray with a zero direction component: SanitizeRay's ray (its zero
+  // signed), set up alone.
   for (uint32_t m = zero; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
+    Ray ray = p->ray[i];
+    SanitizeRay(&ray);
     RaySetup s;
-    if (!SetUpRayScalar(p->ray[i], tree.bounds, &s)) continue;
-    PutRay(p->ray[i], i, p);
+    if (!SetUpRayScalar(ray, tree.bounds, &s)) continue;
+    PutRay(ray, i, p);
     SetLane(s, i, p);
     p->live |= 1u << i;
   }

@@ -1,5 +1,6 @@
-// The packet traversal's per-ray set-up: SetUpRay's vector path
-// (ray_setup.h) for a packet's 16 lanes at once, compiled for every x86
+// The packet traversal's per-ray set-up: SanitizeRay (ray_check.h) and
+// SetUpRay's vector path (ray_setup.h) for a packet's 16 lanes at once,
+// compiled for every x86
 // target Highway knows and chosen at run time like the kernel
 // (ray_packet_kernel.cc). Bit for bit the scalar set-up: ray_setup_test.
 #undef HWY_TARGET_INCLUDE
@@ -14,7 +15,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 
+#include "cc/geometry/ray.h"
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/packet_rays.h"
 #include "cc/kdtree/ray_setup.h"
@@ -102,6 +106,74 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   return Bits(d, hn::Le(lo, hi));
 }
 
+// SanitizeRay (ray_check.h) for the lanes [base, base + Lanes(d)) of
+// `rays` (kLanes rays, 8 floats each: origin, dir, tmin, tmax), in vectors:
+// stores their components into p, directions sanitized (a component below
+// the smallest normal float becomes a zero of its sign); returns the lanes
+// with a valid ray and sets *zero to those with a zero direction component
+// and *behind to those with tmin >= 0.
+template <class D>
+HWY_INLINE uint32_t LoadChunk(D d, const float* rays, size_t base, PacketRays* p,
+                              uint32_t* zero, uint32_t* behind) {
+  using V = hn::Vec<D>;
+  const hn::RebindToSigned<D> di;
+  const auto index = hn::Mul(hn::Iota(di, static_cast<int32_t>(base)), hn::Set(di, 8));
+  const V tmin = hn::GatherIndex(d, rays + 6, index), tmax = hn::GatherIndex(d, rays + 7, index);
+  auto valid = hn::Le(tmin, tmax);  // also false for NaN
+  auto nonzero = hn::Lt(tmin, hn::Zero(d));  // all false
+  auto has_zero = nonzero;
+  const V min_normal = hn::Set(d, std::numeric_limits<float>::min());
+  for (int k = 0; k < 3; ++k) {
+    const V o = hn::GatherIndex(d, rays + k, index);
+    V dir = hn::GatherIndex(d, rays + 3 + k, index);
+    valid = hn::And(valid, hn::And(hn::IsFinite(o), hn::IsFinite(dir)));
+    dir = hn::IfThenElse(hn::Lt(hn::Abs(dir), min_normal), hn::CopySign(hn::Zero(d), dir), dir);
+    const auto is_zero = hn::Eq(dir, hn::Zero(d));
+    nonzero = hn::Or(nonzero, hn::Not(is_zero));
+    has_zero = hn::Or(has_zero, is_zero);
+    hn::Store(o, d, p->org[k] + base);
+    hn::Store(dir, d, p->dir[k] + base);
+  }
+  hn::Store(tmin, d, p->tmin + base);
+  hn::Store(tmax, d, p->tmax + base);
+  valid = hn::And(valid, nonzero);
+  *zero |= Bits(d, hn::And(valid, has_zero)) << base;
+  *behind |= Bits(d, hn::And(valid, hn::Ge(tmin, hn::Zero(d)))) << base;
+  return Bits(d, valid) << base;
+}
+
+// Lanes outside `plain` get lane c's components (so that their arithmetic
+// stays finite).
+template <class D>
+HWY_INLINE void CopyChunk(D d, size_t base, uint32_t plain, int c, PacketRays* p) {
+  const auto keep = FromBits(d, plain >> base);
+  float* const rows[8] = {p->org[0], p->org[1], p->org[2], p->dir[0],
+                          p->dir[1], p->dir[2], p->tmin,   p->tmax};
+  for (float* row : rows) {
+    hn::Store(hn::IfThenElse(keep, hn::Load(d, row + base), hn::Set(d, row[c])), d, row + base);
+  }
+}
+
+uint32_t LoadLanesImpl(const Ray* rays, PacketRays* p, uint32_t* zero) {
+  static_assert(sizeof(Ray) == 8 * sizeof(float), "a ray is 8 floats");
+  float flat[kLanes * 8];
+  std::memcpy(flat, rays, sizeof(flat));
+  const hn::ScalableTag<float> d;
+  const size_t n = hn::Lanes(d);
+  uint32_t valid = 0;
+  *zero = 0;
+  p->behind = 0;
+  for (size_t base = 0; base < kLanes; base += n) {
+    valid |= LoadChunk(d, flat, base, p, zero, &p->behind);
+  }
+  const uint32_t plain = valid & ~*zero;
+  if (valid != 0 && plain != kAllLanes) {
+    const int c = __builtin_ctz(plain != 0 ? plain : valid);
+    for (size_t base = 0; base < kLanes; base += n) CopyChunk(d, base, plain, c, p);
+  }
+  return valid;
+}
+
 uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p) {
   const hn::ScalableTag<float> d;
   const size_t n = hn::Lanes(d);
@@ -120,6 +192,11 @@ namespace kdtree {
 namespace packet_internal {
 
 HWY_EXPORT(SetUpLanesImpl);
+HWY_EXPORT(LoadLanesImpl);
+
+uint32_t LoadLanes(const Ray* rays, PacketRays* p, uint32_t* zero) {
+  return HWY_DYNAMIC_DISPATCH(LoadLanesImpl)(rays, p, zero);
+}
 
 uint32_t SetUpLanes(const AABB& box, PacketRays* p) {
   return HWY_DYNAMIC_DISPATCH(SetUpLanesImpl)(box, p);
