@@ -38,7 +38,9 @@ struct PacketRays {
   alignas(64) float shear_weight[kLanes];
   // The triangle each ray leaves from, never tested (kNoHit: none).
   alignas(64) uint32_t origin[kLanes];
-  Ray ray[kLanes];  // after SanitizeRay
+  // The rays as given; a live lane's as SanitizeRay leaves it (the same ray
+  // unless a direction component was flushed to zero: then its own set-up).
+  Ray ray[kLanes];
   uint8_t key[kLanes];  // direction signs and watertight axes (Group)
   uint32_t live = 0;    // bit i: ray i reaches the tree
   uint32_t behind = 0;  // bit i: ray i has tmin >= 0 (packet_reject.h)
