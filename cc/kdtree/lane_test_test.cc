@@ -11,7 +11,6 @@
 // edge functions sum to zero; so the vector path's near-zero area check,
 // which mirrors Finish's, sends no lane of these to the scalar test.)
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,17 +19,14 @@
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/config.h"
 #include "cc/kdtree/ray_packet.h"
+#include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
 #include "gtest/gtest.h"
 
 namespace kdtree {
 namespace {
 
-bool Bitwise(const Hit& a, const Hit& b) {
-  return a.tri == b.tri && std::memcmp(&a.t, &b.t, sizeof(float)) == 0 &&
-         std::memcmp(&a.u, &b.u, sizeof(float)) == 0 &&
-         std::memcmp(&a.v, &b.v, sizeof(float)) == 0;
-}
+using testing::BitwiseSameHit;
 
 // A grid of n x n quads (two triangles each) in the plane z = 0, with
 // shared edges; every fifth triangle again (a tie at every t), reversed
@@ -150,7 +146,7 @@ TEST(LaneTest, EveryBranchOnEveryKernelWidth) {
         IntersectPacket(*tree, &rays[i], kRayPacketSize, out);
         OccludedPacket(*tree, &rays[i], kRayPacketSize, nullptr, occ);
         for (int l = 0; l < kRayPacketSize; ++l) {
-          closest += !Bitwise(out[l], single[i + l]);
+          closest += !BitwiseSameHit(out[l], single[i + l]);
           any += occ[l] != Occluded(*tree, rays[i + l]);
         }
       }

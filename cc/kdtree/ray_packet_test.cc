@@ -13,7 +13,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -33,11 +32,7 @@
 namespace kdtree {
 namespace {
 
-bool Bitwise(const Hit& a, const Hit& b) {
-  return a.tri == b.tri && std::memcmp(&a.t, &b.t, sizeof(float)) == 0 &&
-         std::memcmp(&a.u, &b.u, sizeof(float)) == 0 &&
-         std::memcmp(&a.v, &b.v, sizeof(float)) == 0;
-}
+using testing::BitwiseSameHit;
 
 struct PacketSet {
   std::vector<Ray> rays;  // packets of kRayPacketSize consecutive rays...
@@ -163,7 +158,7 @@ Counts Check(const TriangleSoup& soup, const KdTree& tree, const PacketSet& s, b
     ++c.packets;
     for (int i = 0; i < n; ++i) {
       const Hit single = Intersect(tree, rays[i]);
-      c.closest += !Bitwise(hits[i], single);
+      c.closest += !BitwiseSameHit(hits[i], single);
       c.any += occ[i] != Occluded(tree, rays[i]);
       if (!brute) continue;
       const Hit ref = bf.Intersect(rays[i]);
@@ -284,7 +279,7 @@ TEST_P(PacketVsSingle, OriginTrianglesPerLane) {
           differ += occ[l] != Occluded(tree_, rays[l], o);
           Hit hits[kRayPacketSize];
           IntersectPacket(tree_, &rays[l], 1, hits, o);
-          differ += !Bitwise(hits[0], Intersect(tree_, rays[l], o));
+          differ += !BitwiseSameHit(hits[0], Intersect(tree_, rays[l], o));
           if (tris == origin) {
             brute += occ[l] != bf.Occluded(rays[l]);
             shadowed += occ[l];
@@ -335,7 +330,7 @@ TEST(RayPacket, MixedSignsAndFallBacks) {
     IntersectPacket(*t, mixed.data(), kRayPacketSize, hits);
     OccludedPacket(*t, mixed.data(), kRayPacketSize, nullptr, occ);
     for (int i = 0; i < kRayPacketSize; ++i) {
-      EXPECT_TRUE(Bitwise(hits[i], Intersect(*t, mixed[i])));
+      EXPECT_TRUE(BitwiseSameHit(hits[i], Intersect(*t, mixed[i])));
       EXPECT_TRUE(hits[i].hit());
       EXPECT_EQ(occ[i], Occluded(*t, mixed[i]));
     }

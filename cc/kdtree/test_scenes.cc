@@ -1,6 +1,7 @@
 #include "cc/kdtree/test_scenes.h"
 
 #include <cmath>
+#include <cstring>
 #include <array>
 #include <map>
 #include <random>
@@ -163,6 +164,12 @@ std::vector<Ray> CameraRays(const TriangleSoup& soup, int width, int height) {
     }
   }
   return rays;
+}
+
+bool BitwiseSameHit(const Hit& a, const Hit& b) {
+  return a.tri == b.tri && std::memcmp(&a.t, &b.t, sizeof(float)) == 0 &&
+         std::memcmp(&a.u, &b.u, sizeof(float)) == 0 &&
+         std::memcmp(&a.v, &b.v, sizeof(float)) == 0;
 }
 
 }  // namespace testing

@@ -33,6 +33,10 @@ std::vector<Ray> RandomRays(const TriangleSoup& soup, int count, uint32_t seed);
 // scene box looking at its centre, 45 degree field of view.
 std::vector<Ray> CameraRays(const TriangleSoup& soup, int width, int height);
 
+// Whether two hits are the same bit for bit (triangle, t, u and v): how the
+// packet tests compare a lane with the single-ray traversal.
+bool BitwiseSameHit(const Hit& a, const Hit& b);
+
 }  // namespace testing
 }  // namespace kdtree
 
