@@ -10,10 +10,9 @@
 // same for four triangles and one ray), so a lane RejectRays sets is a lane
 // the test rejects. FinishLanes then runs the rest of the test for the
 // common case, a ray whose three edge functions have decided, agreeing
-// signs: watertight.h's Finish, in double
-// vectors with Finish's operations in Finish's order (each IEEE operation is
-// correctly rounded, so every lane gets the scalar test's floats: t, u, v bit
-// for bit). The rare lanes (an undecided sign, a projected area within
+// signs: watertight.h's Finish, in double vectors with Finish's operations
+// in Finish's order (each IEEE operation is correctly rounded, so every lane
+// gets the scalar test's floats: t, u, v bit for bit). The rare lanes (an undecided sign, a projected area within
 // rounding of zero, a triangle across the origin's depth with t within
 // rounding of tmin) are returned for the scalar test itself.
 #if defined(KDTREE_CC_KDTREE_LANE_TEST_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -176,24 +175,19 @@ struct LaneHits {
   HWY_ALIGN float v[kLanes];
 };
 
-// IntersectTriangleWatertight for `lanes` (behind: the lanes with tmin >= 0;
-// tmax, aligned: each lane's tmax, its best hit's t so far), the triangle's
-// shear s.
-// A lane in neither out->hit nor out->scalar misses.
+// IntersectTriangleWatertight after RejectRays, for the `lanes` it did not
+// reject (tmax, aligned: each lane's tmax, its best hit's t so far), the
+// triangle's shear s. A lane in neither out->hit nor out->scalar misses.
 template <class D>
 HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t lanes,
-                            uint32_t behind, const float* tmax, LaneHits* out) {
+                            const float* tmax, LaneHits* out) {
 #if HWY_TARGET == HWY_SCALAR
   out->hit = 0;
   out->scalar = lanes;  // no half vectors: the scalar test does it all
-  (void)d, (void)f, (void)s, (void)behind, (void)tmax;
+  (void)d, (void)f, (void)s, (void)tmax;
 #else
   using V = hn::Vec<D>;
-  lanes &= ~DisagreeLanes(d, s);
   const V z[3] = {hn::Mul(f.sz, s.dz[0]), hn::Mul(f.sz, s.dz[1]), hn::Mul(f.sz, s.dz[2])};
-  const auto zero = hn::Zero(d);
-  lanes &= ~(Bits(d, hn::And(hn::And(hn::Lt(z[0], zero), hn::Lt(z[1], zero)),
-                             hn::Lt(z[2], zero))) & behind);
   const uint32_t decided = Bits(d, hn::And(hn::And(hn::Gt(hn::Abs(s.e[0]), s.bound),
                                                    hn::Gt(hn::Abs(s.e[1]), s.bound)),
                                            hn::Gt(hn::Abs(s.e[2]), s.bound)));

@@ -91,7 +91,7 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
       }
       if (rays == 0) continue;
       LaneHits lh;
-      FinishLanes(d, f, s, rays, behind, best_t, &lh);
+      FinishLanes(d, f, s, rays, best_t, &lh);
       for (uint32_t m = lh.hit; m != 0; m &= m - 1) {
         const int i = __builtin_ctz(m);
         Record<kAnyHit>(i, id[l], lh.t[i], lh.u[i], lh.v[i], &best[base + i], lanes, found, best_t);
@@ -157,7 +157,7 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
     if (rays != 0) {
       hn::Store(hn::TableLookupLanes(hn::Load(d, best_t), perm), d, tmax);
       LaneHits lh;
-      FinishLanes(d, pf, s, rays, behind, tmax, &lh);
+      FinishLanes(d, pf, s, rays, tmax, &lh);
       for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
         const int j = __builtin_ctz(m);
         const int i = index[j], l = j % kPacketLanes;

@@ -1,8 +1,8 @@
 // The packet traversal's per-ray set-up: SanitizeRay (ray_check.h) and
 // SetUpRay's vector path (ray_setup.h) for a packet's 16 lanes at once,
-// compiled for every x86
-// target Highway knows and chosen at run time like the kernel
-// (ray_packet_kernel.cc). Bit for bit the scalar set-up: ray_setup_test.
+// compiled for every x86 target Highway knows and chosen at run time like
+// the kernel (ray_packet_kernel.cc). Bit for bit the scalar set-up:
+// ray_setup_test.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cc/kdtree/ray_packet_setup.cc"
 #ifndef HWY_COMPILE_ALL_ATTAINABLE
