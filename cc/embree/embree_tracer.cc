@@ -2,8 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+
+#include <immintrin.h>
 
 #include "absl/status/status.h"
 #include "absl/strings/ascii.h"
@@ -25,6 +28,22 @@ RTCBuildQuality ToRtc(EmbreeQuality q) {
     case EmbreeQuality::kHigh: return RTC_BUILD_QUALITY_HIGH;
   }
   return RTC_BUILD_QUALITY_MEDIUM;
+}
+
+// The ray into Embree's single-ray layout (tnear after the origin, time
+// after the direction), each half in one 16-byte store: Embree reads the
+// halves as 16-byte vectors, which narrower stores would not forward to (a
+// stall on every ray; ray.h LoadRay says the same of our side). Not tfar.
+void PutRay(const Ray& in, RTCRay* r) {
+  const Ray ray = LoadRay(in);
+  static_assert(offsetof(RTCRay, tnear) == offsetof(RTCRay, org_x) + 12, "org, tnear");
+  static_assert(offsetof(RTCRay, time) == offsetof(RTCRay, dir_x) + 12, "dir, time");
+  _mm_storeu_ps(&r->org_x, _mm_setr_ps(ray.origin.x, ray.origin.y, ray.origin.z, ray.tmin));
+  _mm_storeu_ps(&r->dir_x, _mm_setr_ps(ray.dir.x, ray.dir.y, ray.dir.z, 0.0f));
+  r->tfar = ray.tmax;
+  r->mask = 0xffffffffu;
+  r->id = 0;
+  r->flags = 0;
 }
 
 }  // namespace
@@ -105,18 +124,7 @@ Hit EmbreeTracer::Intersect(const Ray& ray) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.dir_x = ray.dir.x;
-  rh.ray.dir_y = ray.dir.y;
-  rh.ray.dir_z = ray.dir.z;
-  rh.ray.time = 0.0f;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.mask = 0xffffffffu;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  PutRay(ray, &rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &ctx, &rh);
@@ -134,18 +142,7 @@ bool EmbreeTracer::Occluded(const Ray& ray, uint32_t /*origin_tri*/) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay r;
-  r.org_x = ray.origin.x;
-  r.org_y = ray.origin.y;
-  r.org_z = ray.origin.z;
-  r.tnear = ray.tmin;
-  r.dir_x = ray.dir.x;
-  r.dir_y = ray.dir.y;
-  r.dir_z = ray.dir.z;
-  r.time = 0.0f;
-  r.tfar = ray.tmax;
-  r.mask = 0xffffffffu;
-  r.id = 0;
-  r.flags = 0;
+  PutRay(ray, &r);
   rtcOccluded1(scene_, &ctx, &r);
   return r.tfar == -std::numeric_limits<float>::infinity();
 }
@@ -154,9 +151,9 @@ namespace {
 
 // The rays of lanes i < n in a packet of 16; `valid` -1 for them, 0 for the
 // rest.
-void FillRay16(const Ray* rays, int n, int* valid, RTCRay16* r) {
+void FillRay16Scalar(const Ray* rays, int n, int* valid, RTCRay16* r) {
   for (int i = 0; i < 16; ++i) {
-    const Ray ray = i < n ? rays[i] : Ray{{0, 0, 0}, {1, 0, 0}};
+    const Ray ray = i < n ? LoadRay(rays[i]) : Ray{{0, 0, 0}, {1, 0, 0}};
     valid[i] = i < n ? -1 : 0;
     r->org_x[i] = ray.origin.x;
     r->org_y[i] = ray.origin.y;
@@ -170,6 +167,44 @@ void FillRay16(const Ray* rays, int n, int* valid, RTCRay16* r) {
     r->mask[i] = 0xffffffffu;
     r->id[i] = i;
     r->flags[i] = 0;
+  }
+}
+
+// FillRay16Scalar with each row of 16 in one 64-byte store: Embree's 16-wide
+// kernel loads a row as one vector, which 16 narrower stores would not
+// forward to (ray.h LoadRay); gathers read the rays 4 bytes at a time,
+// which forwards from however the renderer wrote them. Paired rounds
+// (render_bench, bunny, city, hairball-small): Embree's packets 1.5-3.5 %
+// faster than with FillRay16Scalar.
+__attribute__((target("avx512f"))) void FillRay16Wide(const Ray* rays, int n, int* valid,
+                                                       RTCRay16* r) {
+  static_assert(sizeof(Ray) == 8 * sizeof(float), "origin, dir, tmin, tmax");
+  Ray tail[16];
+  if (n < 16) {
+    for (int i = 0; i < 16; ++i) tail[i] = i < n ? LoadRay(rays[i]) : Ray{{0, 0, 0}, {1, 0, 0}};
+    rays = tail;
+  }
+  const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const __m512i at = _mm512_slli_epi32(lane, 3);  // ray i's floats start at 8 i
+  const float* f = &rays[0].origin.x;
+  float* const rows[8] = {r->org_x, r->org_y, r->org_z, r->dir_x,
+                          r->dir_y, r->dir_z, r->tnear, r->tfar};
+  for (int k = 0; k < 8; ++k) {
+    _mm512_store_ps(rows[k], _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xFFFF, at, f + k, 4));
+  }
+  _mm512_store_ps(r->time, _mm512_setzero_ps());
+  _mm512_store_si512(r->mask, _mm512_set1_epi32(-1));
+  _mm512_store_si512(r->id, lane);
+  _mm512_store_si512(r->flags, _mm512_setzero_si512());
+  _mm512_store_si512(valid, _mm512_maskz_set1_epi32(static_cast<__mmask16>((1u << n) - 1), -1));
+}
+
+void FillRay16(const Ray* rays, int n, int* valid, RTCRay16* r) {
+  static const bool wide = __builtin_cpu_supports("avx512f");
+  if (wide) {
+    FillRay16Wide(rays, n, valid, r);
+  } else {
+    FillRay16Scalar(rays, n, valid, r);
   }
 }
 

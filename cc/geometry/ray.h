@@ -16,6 +16,24 @@ struct Ray {
   float tmax = std::numeric_limits<float>::infinity();
 };
 
+// A copy of r read one float at a time. A renderer writes a ray field by
+// field just before tracing it, and a plain copy (which the compiler turns
+// into one 32-byte load) of fields still in the store buffer cannot be
+// forwarded from those narrower stores: the load waits until they reach the
+// cache, a stall on every ray. Narrow loads are forwarded; the volatile
+// reads keep the compiler from merging them back into the wide load.
+// Measured on the kd-tree's single rays (render_bench, paired rounds):
+// primary rays 6-11 % faster.
+inline Ray LoadRay(const Ray& r) {
+  const volatile Ray& v = r;
+  Ray out;
+  out.origin = Vec3(v.origin.x, v.origin.y, v.origin.z);
+  out.dir = Vec3(v.dir.x, v.dir.y, v.dir.z);
+  out.tmin = v.tmin;
+  out.tmax = v.tmax;
+  return out;
+}
+
 inline constexpr uint32_t kNoHit = 0xffffffffu;
 
 struct Hit {

@@ -64,7 +64,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
              TraversalCounters* counters) {
   Hit best;
   if (kCount) ++counters->rays;
-  Ray ray = input;
+  Ray ray = LoadRay(input);  // not a wide copy (ray.h)
   if (!SanitizeRay(&ray) || tree.nodes.empty() || !tree.bounds.Valid()) return best;
   assert(kMode != IntersectionMode::kWatertight || tree.verts.size() == 3 * tree.tris.size());
   // Reciprocal direction, tolerances, the padded root interval, the slack and
