@@ -221,8 +221,8 @@ inline float ShearWeight(const WatertightRay& r) {
 // covers all of it with room for its own float evaluation (each term's
 // rounding, relative or by underflow, stays within the slack). An overflow
 // makes the bound +inf or NaN, and then no edge function is trusted.
-// RejectMask4 (cc/kdtree/packet_reject.h) and the packet kernel's RejectRays
-// (cc/kdtree/ray_packet_kernel.cc) do the same operations in the same order.
+// The lane test's ShearLanes and RejectRays (cc/kdtree/lane_test-inl.h) do
+// the same operations in the same order.
 inline float EdgeErrorBound(float l, float mz, float w) {
   return kEdgeBoundRel * (l * (l + (mz + kEdgeBoundMinDepth) * w)) + kEdgeBoundAbs;
 }

@@ -6,9 +6,9 @@
 // ShearLanes and RejectRays are the test's first step and edge bound, each
 // lane with its own ray and triangle (one triangle for all lanes, or a few
 // rays against a leaf packet's four triangles), with the same IEEE operations
-// in the same order as Shear and EdgeErrorBound (packet_reject.h does the
-// same for four triangles and one ray), so a lane RejectRays sets is a lane
-// the test rejects. FinishLanes then runs the rest of the test for the
+// in the same order as Shear and EdgeErrorBound, so a lane RejectRays sets
+// is a lane the test rejects. The single-ray traversal (traversal.cc) uses
+// them too, with one ray and a leaf packet's four triangles in the lanes. FinishLanes then runs the rest of the test for the
 // common case, a ray whose three edge functions have decided, agreeing
 // signs: watertight.h's Finish, in double vectors with Finish's operations
 // in Finish's order (each IEEE operation is correctly rounded, so every lane
@@ -57,6 +57,16 @@ struct Frames {
         sz(hn::Load(d, p.sz + base)),
         shear_weight(hn::Load(d, p.shear_weight + base)),
         tmin(hn::Load(d, p.tmin + base)) {}
+  // One ray (its watertight frame, its tmin) in every lane.
+  Frames(D d, const WatertightRay& w, float tmin)
+      : ox(hn::Set(d, w.ox)),
+        oy(hn::Set(d, w.oy)),
+        oz(hn::Set(d, w.oz)),
+        sx(hn::Set(d, w.sx)),
+        sy(hn::Set(d, w.sy)),
+        sz(hn::Set(d, w.sz)),
+        shear_weight(hn::Set(d, watertight_internal::ShearWeight(w))),
+        tmin(hn::Set(d, tmin)) {}
   // Lane j of the result is lane idx[j] of this (idx: SetTableIndices).
   template <class I>
   Frames Permuted(I idx) const {

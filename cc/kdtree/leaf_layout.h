@@ -32,6 +32,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "cc/geometry/vec3.h"
 #include "cc/kdtree/tree.h"
 
 namespace kdtree {
@@ -52,6 +53,15 @@ void LayoutLeafTriangles(KdTree* tree, bool parallel = false);
 // Whether `tree` has a complete layout (the traversal uses it then).
 inline bool HasLeafLayout(const KdTree& tree) {
   return !tree.leaf_nodes.empty() && tree.leaf_nodes.size() == tree.nodes.size();
+}
+
+// The vertices of lane l of the packet at `packet` (a, b, c: the soup's
+// floats, for IntersectTriangleWatertight).
+inline void PacketTriangle(const float* packet, int l, Vec3* a, Vec3* b, Vec3* c) {
+  const float* q = packet + l;
+  *a = Vec3(q[0 * kPacketLanes], q[1 * kPacketLanes], q[2 * kPacketLanes]);
+  *b = Vec3(q[3 * kPacketLanes], q[4 * kPacketLanes], q[5 * kPacketLanes]);
+  *c = Vec3(q[6 * kPacketLanes], q[7 * kPacketLanes], q[8 * kPacketLanes]);
 }
 
 // Bytes held by the layout (0 when absent).

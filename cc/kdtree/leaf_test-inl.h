@@ -55,10 +55,8 @@ HWY_INLINE void ScalarTest(const PacketRays& p, const Group& g, const float* pac
                            uint32_t tri, size_t base, int i, uint32_t* lanes, uint32_t* found,
                            float* best_t, Hit* best) {
   const size_t r = base + i;
-  const float* q = packet + l;
-  const Vec3 a(q[0 * 4], q[1 * 4], q[2 * 4]);
-  const Vec3 b(q[3 * 4], q[4 * 4], q[5 * 4]);
-  const Vec3 c(q[6 * 4], q[7 * 4], q[8 * 4]);
+  Vec3 a, b, c;
+  PacketTriangle(packet, l, &a, &b, &c);
   float t, u, v;
   const WatertightRay w = LaneRay(p, g.kx, g.ky, g.kz, static_cast<int>(r));
   if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], best[r].t, &t, &u, &v)) {

@@ -43,7 +43,7 @@ struct PacketRays {
   Ray ray[kLanes];
   uint8_t key[kLanes];  // direction signs and watertight axes (Group)
   uint32_t live = 0;    // bit i: ray i reaches the tree
-  uint32_t behind = 0;  // bit i: ray i has tmin >= 0 (packet_reject.h)
+  uint32_t behind = 0;  // bit i: ray i has tmin >= 0 (lane_test-inl.h RejectRays)
   bool has_origins = false;  // some lane has an origin triangle
 };
 

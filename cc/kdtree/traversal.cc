@@ -7,15 +7,24 @@
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
-#include "cc/kdtree/packet_reject.h"
 #include "cc/kdtree/ray_setup.h"
 
 #include <immintrin.h>
+
+#include "hwy/highway.h"
+// For the static target (this file is not dispatched at run time; with
+// -march=native it is the machine's).
+#include "cc/kdtree/lane_test-inl.h"
 
 namespace kdtree {
 
 namespace {
 using ray_setup::kPad;
+namespace hn = hwy::HWY_NAMESPACE;
+namespace lane = packet_internal::HWY_NAMESPACE;
+static_assert(HWY_TARGET != HWY_SCALAR, "a leaf packet's four triangles in one vector");
+// A leaf packet's kPacketLanes triangles, one per lane.
+using D4 = hn::FixedTag<float, kPacketLanes>;
 }  // namespace
 
 bool ClipRayToBox(const Ray& ray, const AABB& box, float* t0, float* t1) {
@@ -81,8 +90,15 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   const float slack = setup.slack;
   const WatertightRay& wray = setup.wray;
   // Triangles wholly behind the origin are rejected in the 4-wide step too
-  // (packet_reject.h), as the watertight test rejects them.
+  // (lane_test-inl.h RejectRays), as the watertight test rejects them.
   const bool behind = ray.tmin >= 0.0f;
+  // The ray in every lane of a leaf packet test (lane_test-inl.h).
+  const D4 d4;
+  const lane::Frames<D4> frames(d4, wray, ray.tmin);
+  packet_internal::Group axes;
+  axes.kx = wray.kx;
+  axes.ky = wray.ky;
+  axes.kz = wray.kz;
   // The origin triangle (TraversalOptions::origin_tri), watertight only; the
   // packets' lane 0 also carries kLastPacket, masked off before comparing.
   if (kMode != IntersectionMode::kWatertight) origin_tri = kNoHit;
@@ -170,31 +186,51 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         live &= ~_mm_movemask_ps(
             _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(ids, id_bits), skip_id)));
         if (kCount) counters->triangle_tests += __builtin_popcount(live);
-        live &= ~RejectMask4(wray, packet, behind);
-        while (live != 0) {
-          const int l = __builtin_ctz(live);
-          live &= live - 1;
-          const uint32_t tri = id[l];
-          if (kMailbox && !kCount) {
-            // Fast path: the 4-wide reject costs the same with or without a
-            // lane, so only the full test of a survivor is mailboxed.
-            uint32_t& slot = mailbox[tri & (kMailboxSlots - 1)];
-            if (slot == tri) continue;
-            slot = tri;
+        // The packet kernel's per-lane test (lane_test-inl.h) with the
+        // packet's four triangles in the lanes: the rejection, then the rest
+        // of the test in vectors for the lanes with decided signs (bit for
+        // bit the scalar test's t, u, v), the scalar test for the others. All
+        // four are tested against the same best.t; Closer then drops a hit
+        // beyond one an earlier lane found, as the scalar test with that
+        // lane's t as tmax would have.
+        const lane::LaneShear<D4> s =
+            lane::ShearLanes(d4, frames, lane::RepeatTriangles(d4, axes, packet));
+        live &= ~lane::RejectRays(d4, frames, s, behind ? 0xFu : 0u);
+        if (kMailbox && !kCount) {
+          // Fast path: the rejection costs the same with or without a lane,
+          // so only the rest of the test is mailboxed.
+          for (uint32_t m = live; m != 0; m &= m - 1) {
+            const int l = __builtin_ctz(m);
+            uint32_t& slot = mailbox[id[l] & (kMailboxSlots - 1)];
+            if (slot == id[l]) {
+              live &= ~(1 << l);
+            } else {
+              slot = id[l];
+            }
           }
-          const Vec3 a(packet[0 * 4 + l], packet[1 * 4 + l], packet[2 * 4 + l]);
-          const Vec3 b(packet[3 * 4 + l], packet[4 * 4 + l], packet[5 * 4 + l]);
-          const Vec3 c(packet[6 * 4 + l], packet[7 * 4 + l], packet[8 * 4 + l]);
-          float t, u, v;
-          // Any hit: best holds no hit yet (the first one returns), and a hit
-          // with t <= best.t = tmax is always Closer.
-          if (IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v) &&
-              (kAnyHit || Closer(t, tri, best))) {
-            best.tri = tri;
-            best.t = t;
-            best.u = u;
-            best.v = v;
-            if (kAnyHit) return best;
+        }
+        if (live != 0) {
+          HWY_ALIGN float tmax[kPacketLanes] = {best.t, best.t, best.t, best.t};
+          lane::LaneHits lh;
+          lane::FinishLanes(d4, frames, s, static_cast<uint32_t>(live), tmax, &lh);
+          for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
+            const int l = __builtin_ctz(m);
+            float t = lh.t[l], u = lh.u[l], v = lh.v[l];
+            bool hit = (lh.hit >> l) & 1;
+            if (!hit) {
+              Vec3 a, b, c;
+              PacketTriangle(packet, l, &a, &b, &c);
+              hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
+            }
+            // Any hit: best holds no hit yet (the first one returns), and a
+            // hit with t <= best.t = tmax is always Closer.
+            if (hit && (kAnyHit || Closer(t, id[l], best))) {
+              best.tri = id[l];
+              best.t = t;
+              best.u = u;
+              best.v = v;
+              if (kAnyHit) return best;
+            }
           }
         }
         packet = last ? nullptr : packet + kPacketFloats;

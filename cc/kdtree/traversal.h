@@ -55,10 +55,11 @@
 //    the tree has them, else from KdTree::verts by index.
 //  - The common rejection of the watertight test (edge functions of definitely
 //    different signs, the same float expressions as watertight.h) runs first,
-//    on 4 triangles at once (SSE) with the packets, else inlined per triangle;
-//    with the packets it also drops triangles whose three vertices lie behind
-//    the origin (tmin >= 0; packet_reject.h). Only triangles that pass run
-//    the full test.
+//    on 4 triangles at once (SSE or wider) with the packets, else inlined per
+//    triangle; with the packets it also drops triangles whose three vertices
+//    lie behind the origin (tmin >= 0), and the rest of the test runs in
+//    vectors too, the scalar test only for lanes within rounding of an edge
+//    or of tmin (lane_test-inl.h, the packet kernel's code).
 //  - Optional mailboxing (TraversalOptions::mailbox; Amanatides & Woo, "A fast
 //    voxel traversal algorithm for ray tracing", Eurographics 1987; Havran's
 //    thesis, 2000, section 5.5): a triangle that clipping put in several leaves
