@@ -162,7 +162,7 @@ Counts Check(const TriangleSoup& soup, const KdTree& tree, const PacketSet& s, b
       c.any += occ[i] != Occluded(tree, rays[i]);
       if (!brute) continue;
       const Hit ref = bf.Intersect(rays[i]);
-      c.brute += !(hits[i].tri == ref.tri && (!ref.hit() || hits[i].t == ref.t));
+      c.brute += ref.hit() ? !BitwiseSameHit(hits[i], ref) : hits[i].hit();
       c.hits += ref.hit();
     }
   }
