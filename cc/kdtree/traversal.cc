@@ -215,9 +215,14 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
           lane::FinishLanes(d4, frames, s, static_cast<uint32_t>(live), tmax, &lh);
           for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
             const int l = __builtin_ctz(m);
-            float t = lh.t[l], u = lh.u[l], v = lh.v[l];
-            bool hit = (lh.hit >> l) & 1;
-            if (!hit) {
+            float t, u, v;
+            bool hit;
+            if ((lh.hit >> l) & 1) {
+              t = lh.t[l];
+              u = lh.u[l];
+              v = lh.v[l];
+              hit = true;
+            } else {
               Vec3 a, b, c;
               PacketTriangle(packet, l, &a, &b, &c);
               hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
