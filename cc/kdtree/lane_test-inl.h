@@ -7,14 +7,15 @@
 // lane with its own ray and triangle (one triangle for all lanes, or a few
 // rays against a leaf packet's four triangles), with the same IEEE operations
 // in the same order as Shear and EdgeErrorBound, so a lane RejectRays sets
-// is a lane the test rejects. The single-ray traversal (traversal.cc) uses
-// them too, with one ray and a leaf packet's four triangles in the lanes. FinishLanes then runs the rest of the test for the
-// common case, a ray whose three edge functions have decided, agreeing
+// is a lane the test rejects. FinishLanes then runs the rest of the test for
+// the common case, a ray whose three edge functions have decided, agreeing
 // signs: watertight.h's Finish, in double vectors with Finish's operations
 // in Finish's order (each IEEE operation is correctly rounded, so every lane
-// gets the scalar test's floats: t, u, v bit for bit). The rare lanes (an undecided sign, a projected area within
-// rounding of zero, a triangle across the origin's depth with t within
-// rounding of tmin) are returned for the scalar test itself.
+// gets the scalar test's floats: t, u, v bit for bit). The rare lanes (an
+// undecided sign, a projected area within rounding of zero, a triangle
+// across the origin's depth with t within rounding of tmin) are returned for
+// the scalar test itself. The single-ray traversal (traversal.cc) runs them
+// too, with one ray in every lane and a leaf packet's four triangles.
 #if defined(KDTREE_CC_KDTREE_LANE_TEST_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef KDTREE_CC_KDTREE_LANE_TEST_INL_H_
 #undef KDTREE_CC_KDTREE_LANE_TEST_INL_H_
@@ -58,7 +59,7 @@ struct Frames {
         shear_weight(hn::Load(d, p.shear_weight + base)),
         tmin(hn::Load(d, p.tmin + base)) {}
   // One ray (its watertight frame, its tmin) in every lane.
-  Frames(D d, const WatertightRay& w, float tmin)
+  Frames(D d, const WatertightRay& w, float ray_tmin)
       : ox(hn::Set(d, w.ox)),
         oy(hn::Set(d, w.oy)),
         oz(hn::Set(d, w.oz)),
@@ -66,7 +67,7 @@ struct Frames {
         sy(hn::Set(d, w.sy)),
         sz(hn::Set(d, w.sz)),
         shear_weight(hn::Set(d, watertight_internal::ShearWeight(w))),
-        tmin(hn::Set(d, tmin)) {}
+        tmin(hn::Set(d, ray_tmin)) {}
   // Lane j of the result is lane idx[j] of this (idx: SetTableIndices).
   template <class I>
   Frames Permuted(I idx) const {
