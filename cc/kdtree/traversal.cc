@@ -55,6 +55,21 @@ bool ClipRayToBox(const Ray& ray, const AABB& box, float* t0, float* t1) {
 
 namespace {
 
+// The lanes of `live` whose triangle (id[l]) the mailbox has not seen; each
+// is entered, in lane order.
+int Unmailboxed(int live, const uint32_t* id, uint32_t* mailbox) {
+  for (int m = live; m != 0; m &= m - 1) {
+    const int l = __builtin_ctz(m);
+    uint32_t& slot = mailbox[id[l] & (kMailboxSlots - 1)];
+    if (slot == id[l]) {
+      live &= ~(1 << l);
+    } else {
+      slot = id[l];
+    }
+  }
+  return live;
+}
+
 struct StackEntry {
   uint32_t node;
   float t_entry, t_exit;
@@ -170,19 +185,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         _mm_store_si128(reinterpret_cast<__m128i*>(id), ids);
         const bool last = (id[0] & kLastPacket) != 0;
         id[0] &= ~kLastPacket;
-        if (kMailbox && kCount) {
-          // Counting: the mailbox is checked before the test, so N_IT counts
-          // the references really tested.
-          for (int l = 0; l < kPacketLanes; ++l) {
-            if (!(live & (1 << l))) continue;
-            uint32_t& slot = mailbox[id[l] & (kMailboxSlots - 1)];
-            if (slot == id[l]) {
-              live &= ~(1 << l);
-            } else {
-              slot = id[l];
-            }
-          }
-        }
+        // Counting: the mailbox is checked before the test, so N_IT counts
+        // the references really tested.
+        if (kMailbox && kCount) live = Unmailboxed(live, id, mailbox);
         live &= ~_mm_movemask_ps(
             _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(ids, id_bits), skip_id)));
         if (kCount) counters->triangle_tests += __builtin_popcount(live);
@@ -196,19 +201,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const lane::LaneShear<D4> s =
             lane::ShearLanes(d4, frames, lane::RepeatTriangles(d4, axes, packet));
         live &= ~lane::RejectRays(d4, frames, s, behind ? 0xFu : 0u);
-        if (kMailbox && !kCount) {
-          // Fast path: the rejection costs the same with or without a lane,
-          // so only the rest of the test is mailboxed.
-          for (uint32_t m = live; m != 0; m &= m - 1) {
-            const int l = __builtin_ctz(m);
-            uint32_t& slot = mailbox[id[l] & (kMailboxSlots - 1)];
-            if (slot == id[l]) {
-              live &= ~(1 << l);
-            } else {
-              slot = id[l];
-            }
-          }
-        }
+        // Fast path: the rejection costs the same with or without a lane, so
+        // only the rest of the test is mailboxed.
+        if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
         if (live != 0) {
           HWY_ALIGN float tmax[kPacketLanes] = {best.t, best.t, best.t, best.t};
           lane::LaneHits lh;
