@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The speed benchmarks of issue 7: build throughput and parallel speed-up, render throughput against Embree.
+"""The speed benchmarks of issues 7 and 23: build throughput and parallel speed-up, render throughput against Embree.
 
 Runs the two optimised benchmark binaries over the fetched scenes
 (data/cache/scenes/index.json) and appends their JSON lines to OUT/build.jsonl
@@ -13,6 +13,12 @@ Embree's disagreements.
   experiments/bench.py                        # defaults below
   experiments/bench.py --build_min_tris 1000000 --render_min_tris 50000
   experiments/bench.py --repo ../other-checkout   # scenes fetched there
+
+Issue 23's targets get a table of their own (targets_summary): per scene of
+the render records, one thread, our fastest single-ray mode against Embree's
+single rays (target 0.8) and our best mode against Embree's best mode (target
+1.0), each per round (the faster mode of each side in that round), then the
+median and range over the rounds.
 
 Numbers: T_B is the median of --repeats builds, and also the fastest, since
 on a shared or virtual machine the slow runs carry other load; Mtri/s =
@@ -267,6 +273,62 @@ def render_summary(records):
     return "\n".join(out)
 
 
+# Our single-ray modes and Embree's (render_bench.cc tracer names); every
+# other tracer of ours ("kd..." but not an env: tree) is a packet mode.
+SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin")
+EMBREE_SINGLE = ("embree",)
+EMBREE_ALL = ("embree", "embree_packet")
+# Issue 23's bars: single rays, best mode.
+SINGLE_TARGET, BEST_TARGET = 0.8, 1.0
+
+
+def per_round_ratio(tracers, theirs, ours):
+    """Per round, the fastest of Embree's modes `theirs` over the fastest of
+    our modes `ours` (T_R_runs: one time per round, in round order), as
+    (median, min, max) over the rounds; None when a side has no mode."""
+    emb = [tracers[n]["T_R_runs"] for n in theirs if n in tracers]
+    kd = [tracers[n]["T_R_runs"] for n in ours if n in tracers]
+    if not emb or not kd:
+        return None
+    rounds = min(len(x) for x in emb + kd)
+    if rounds == 0:
+        return None
+    r = [min(e[i] for e in emb) / min(k[i] for k in kd) for i in range(rounds)]
+    return statistics.median(r), min(r), max(r)
+
+
+def targets_summary(records):
+    """Issue 23's targets per scene (one thread): single/single and
+    best/best, paired per round."""
+    out = ["| scene | triangles | preset | single rays / Embree's single rays "
+           "| best mode / Embree's best mode |", "|---|---|---|---|---|"]
+    single_all, best_all = [], []
+    one_thread = [r for r in records if r.get("threads") == 1]
+    for r in sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"])):
+        t = r["tracers"]
+        ours = [n for n in t if n.startswith("kd")]
+        single = per_round_ratio(t, EMBREE_SINGLE, [n for n in ours if n in SINGLE_MODES])
+        best = per_round_ratio(t, EMBREE_ALL, ours)
+        cells = []
+        for value, bar, acc in ((single, SINGLE_TARGET, single_all), (best, BEST_TARGET, best_all)):
+            if value is None:
+                cells.append("-")
+                continue
+            acc.append(value[0])
+            cells.append("%.2f [%.2f..%.2f]%s" % (value + (" (met)" if value[0] >= bar else "",)))
+        out.append("| %s | %s | %s | %s | %s |" % (r["scene"], format(r["n_tri"], ","),
+                                                r["preset"], cells[0], cells[1]))
+    for name, values, bar in (("Single rays against Embree's single rays", single_all,
+                               SINGLE_TARGET),
+                              ("Best mode against Embree's best mode", best_all, BEST_TARGET)):
+        if values:
+            out.append("")
+            out.append("%s over %d rows: median %.2f, range %.2f to %.2f, %d at %.1f or "
+                       "more." % (name, len(values), statistics.median(values), min(values),
+                                  max(values), sum(v >= bar for v in values), bar))
+    return "\n".join(out)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repo", default=ROOT,
@@ -312,12 +374,15 @@ def main(argv=None):
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
         build = summarise(read(build_out), build_summary, build_out, *allow)
         render = summarise(read(render_out), render_summary, render_out, *allow)
+        targets = summarise(read(render_out), targets_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")
     print(build)
     print("\n## Render (render_bench)\n")
     print(render)
+    print("\n## Issue 23's targets (render_bench, one thread, paired per round)\n")
+    print(targets)
 
 
 if __name__ == "__main__":

@@ -81,6 +81,33 @@ class BenchTest(unittest.TestCase):
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
 
+    def test_targets_summary_pairs_the_fastest_modes_per_round(self):
+        def runs(*t):
+            return {"T_R_runs": list(t)}
+        r = {"scene": "s", "n_tri": 100000, "preset": "sah-packet", "threads": 1,
+             "provenance": provenance(),
+             "tracers": {"kd": runs(2.0, 2.0, 4.0), "kd_origin": runs(1.6, 2.5, 2.0),
+                         "kd_packet_origin": runs(1.0, 1.0, 1.0),
+                         "embree": runs(1.6, 1.5, 1.6), "embree_packet": runs(1.2, 1.0, 0.9)}}
+        two = dict(r, threads=2)  # ignored: one thread only
+        text = bench.targets_summary([r, two])
+        # Single: Embree's single over our faster single mode per round: 1.6/1.6,
+        # 1.5/2.0, 1.6/2.0. Best: Embree's faster over ours: 1.2, 1.0, 0.9.
+        self.assertIn("| s | 100,000 | sah-packet | 0.80 [0.75..1.00] (met) | "
+                      "1.00 [0.90..1.20] (met) |", text)
+        self.assertEqual(len([l for l in text.splitlines() if l.startswith("| s |")]), 1)
+        # The closing lines: over the rows' medians.
+        self.assertIn("Single rays against Embree's single rays over 1 rows: median 0.80, "
+                      "range 0.80 to 0.80, 1 at 0.8 or more.", text)
+        self.assertIn("Best mode against Embree's best mode over 1 rows: median 1.00, "
+                      "range 1.00 to 1.00, 1 at 1.0 or more.", text)
+        # Without Embree's packets, the best mode is against its single rays.
+        del r["tracers"]["embree_packet"]
+        self.assertIn("| 1.60 [1.50..1.60] (met) |", bench.targets_summary([r]))
+        # No Embree at all: no ratios.
+        del r["tracers"]["embree"]
+        self.assertIn("| s | 100,000 | sah-packet | - | - |", bench.targets_summary([r]))
+
     def test_summary_states_the_provenance(self):
         text = bench.summarise([build_record(1, [1.0]), build_record(2, [0.5])],
                                bench.build_summary, "build.jsonl")
