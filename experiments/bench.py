@@ -273,8 +273,9 @@ def render_summary(records):
     return "\n".join(out)
 
 
-# Our single-ray modes and Embree's (render_bench.cc tracer names); every
-# other tracer of ours ("kd..." but not an env: tree) is a packet mode.
+# Our single-ray modes and Embree's (render_bench.cc tracer names). The best
+# mode is the fastest of every tracer of ours ("kd...", packet modes and
+# NAME@TARGET included; env: tracers are other trees, not modes).
 SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin")
 EMBREE_SINGLE = ("embree",)
 EMBREE_ALL = ("embree", "embree_packet")
@@ -286,13 +287,11 @@ def per_round_ratio(tracers, theirs, ours):
     """Per round, the fastest of Embree's modes `theirs` over the fastest of
     our modes `ours` (T_R_runs: one time per round, in round order), as
     (median, min, max) over the rounds; None when a side has no mode."""
-    emb = [tracers[n]["T_R_runs"] for n in theirs if n in tracers]
-    kd = [tracers[n]["T_R_runs"] for n in ours if n in tracers]
+    emb = [tracers[n]["T_R_runs"] for n in theirs if tracers.get(n, {}).get("T_R_runs")]
+    kd = [tracers[n]["T_R_runs"] for n in ours if tracers.get(n, {}).get("T_R_runs")]
     if not emb or not kd:
         return None
     rounds = min(len(x) for x in emb + kd)
-    if rounds == 0:
-        return None
     r = [min(e[i] for e in emb) / min(k[i] for k in kd) for i in range(rounds)]
     return statistics.median(r), min(r), max(r)
 
