@@ -372,8 +372,9 @@ def main(argv=None):
     try:
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
         build = summarise(read(build_out), build_summary, build_out, *allow)
-        render = summarise(read(render_out), render_summary, render_out, *allow)
-        targets = summarise(read(render_out), targets_summary, render_out, *allow)
+        render_records = read(render_out)
+        render = summarise(render_records, render_summary, render_out, *allow)
+        targets = summarise(render_records, targets_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")
