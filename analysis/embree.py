@@ -248,7 +248,8 @@ def render(data):
                "packet of 4, $K_T = 45$, hybrid split search, clipping and pruning); "
                "fast/Embree is the paired ratio of that tree in our renderer's "
                "fastest mode (primary and shadow rays in packets of $4\\times 4$ pixels, "
-               "shadow rays leaving their origin triangle untested; the same image).%s" % (
+               "shadow rays leaving their origin triangle untested and searched from "
+               "the light; the same image).%s" % (
                    " %d run%s recorded no paired ratio (made before kdrt paired "
                    "its rounds) and give%s none." % (
                        unpaired, "" if unpaired == 1 else "s",

@@ -58,7 +58,7 @@ FIELDS = {
     "T_B_warmup": "T_B_warmup", "T_R_warmup": "T_R_warmup",
     # The renderer's fastest mode (kdrt --fast_render; matrix
     # fast_render_variants): packets of 4x4 pixels, shadow rays leaving their
-    # origin triangle untested; the same image. Its ratio to Embree is paired
+    # origin triangle untested and searched from the light; the same image. Its ratio to Embree is paired
     # per round (Embree T_R / fast T_R).
     "T_R_fast": "fast_render.T_R", "T_R_fast_runs": "fast_render.T_R_runs",
     "fast_ratio": "fast_render.paired_ratio",

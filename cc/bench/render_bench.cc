@@ -44,9 +44,9 @@
 // "kd_mailbox" (leaf layout and mailboxing, traversal.h), "kd_packet" (kd's
 // tree, primary and shadow rays in packets of 4x4 pixels, RenderOptions::packets,
 // cc/kdtree/ray_packet.h), "kd_origin" (kd, with shadow and AO rays leaving
-// their origin triangle untested, RenderOptions::skip_origin; validated on
-// every recorded secondary ray), "kd_packet_origin" (both: packets, and shadow
-// rays leaving their origin triangle untested); Embree likewise as "embree" (rtcIntersect1 /
+// their origin triangle untested and searched from their end,
+// RenderOptions::skip_origin; validated on every recorded secondary ray),
+// "kd_packet_origin" (both: packets, and shadow rays as in kd_origin); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
 // ratios of every kd tracer to each. A variant NAME@TARGET runs the packet
 // kernel on the given Highway target ("kd_packet_origin@AVX2": 8 lanes on an

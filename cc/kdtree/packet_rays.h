@@ -89,12 +89,17 @@ uint32_t LoadLanes(const Ray* rays, PacketRays* p, uint32_t* zero);
 // box. Vector code, chosen at run time like TraceGroup.
 uint32_t SetUpLanes(const AABB& box, PacketRays* p);
 
+// What a trace looks for: the closest hit (Intersect), or any hit (Occluded)
+// with a node's children taken front to back or from the rays' ends
+// (TraversalOptions::from_end).
+enum class Search { kClosest, kAny, kAnyFromEnd };
+
 // Traces the group's lanes through tree (which has the leaf layout) and
-// writes best[i] for each (closest hit, or with any_hit the first hit found;
-// best[i].t must hold ray i's tmax on entry); best has kLanes entries.
-// Chosen at run time for the CPU (Highway's dynamic dispatch:
+// writes best[i] for each (closest hit, or for an any-hit search the first
+// hit found; best[i].t must hold ray i's tmax on entry); best has kLanes
+// entries. Chosen at run time for the CPU (Highway's dynamic dispatch:
 // ray_packet_kernel.cc).
-void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best);
+void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search, Hit* best);
 
 // The Highway target TraceGroup runs on now ("AVX3", "AVX2", "SSE4", ...).
 const char* KernelTarget();

@@ -101,7 +101,8 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
 
 // Traces the live lanes, one group of lanes with the same direction signs and
 // watertight axes at a time.
-void TraceLive(const KdTree& tree, const PacketRays& p, bool any_hit, Hit* best) {
+void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search search,
+               Hit* best) {
   for (uint32_t rest = p.live; rest != 0;) {
     const uint8_t key = p.key[__builtin_ctz(rest)];
     Group g;
@@ -112,22 +113,22 @@ void TraceLive(const KdTree& tree, const PacketRays& p, bool any_hit, Hit* best)
     rest &= ~g.lanes;
     for (int k = 0; k < 3; ++k) g.negative[k] = (key >> k) & 1;
     WatertightAxes(p.ray[__builtin_ctz(g.lanes)].dir, &g.kx, &g.ky, &g.kz);
-    packet_internal::TraceGroup(tree, p, g, any_hit, best);
+    packet_internal::TraceGroup(tree, p, g, search, best);
   }
 }
 
 
-// The packet's rays, set up and traced (any_hit: Occluded's search);
-// best[i] for i < n, a miss for a ray that does not reach the tree. The
-// kernel reads and writes whole vectors of lanes, hence a full packet.
+// The packet's rays, set up and traced; best[i] for i < n, a miss for a ray
+// that does not reach the tree. The kernel reads and writes whole vectors of
+// lanes, hence a full packet.
 void TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
-                 bool any_hit, Hit (&best)[kRayPacketSize]) {
+                 packet_internal::Search search, Hit (&best)[kRayPacketSize]) {
   PacketRays p;
   Prepare(tree, rays, n, origins, &p);
   for (int i = 0; i < n; ++i) {
     if (p.live & (1u << i)) best[i].t = p.tmax[i];
   }
-  if (p.live != 0) TraceLive(tree, p, any_hit, best);
+  if (p.live != 0) TraceLive(tree, p, search, best);
 }
 
 }  // namespace
@@ -147,7 +148,7 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = options.origin_tri;
   Hit best[kRayPacketSize];
-  TracePacket(tree, rays, n, origins, false, best);
+  TracePacket(tree, rays, n, origins, packet_internal::Search::kClosest, best);
   for (int i = 0; i < n; ++i) {
     hits[i] = best[i];
     if (!hits[i].hit()) hits[i].t = INFINITY;
@@ -172,7 +173,8 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
     origins[i] = origin_tris != nullptr ? origin_tris[i] : options.origin_tri;
   }
   Hit hits[kRayPacketSize];
-  TracePacket(tree, rays, n, origins, true, hits);
+  using packet_internal::Search;
+  TracePacket(tree, rays, n, origins, options.from_end ? Search::kAnyFromEnd : Search::kAny, hits);
   for (int i = 0; i < n; ++i) occluded[i] = hits[i].hit();
 }
 

@@ -21,7 +21,8 @@
 //
 // Exactness: every lane applies the single-ray traversal's rules
 // (traversal.h), with the same float operations, to the same intervals, in
-// the same front-to-back order, and drops a popped node when its own best hit
+// the same order (front to back, or for any hit with
+// TraversalOptions::from_end from the rays' ends), and drops a popped node when its own best hit
 // rules it out. So each lane visits exactly the nodes the single-ray
 // traversal visits for its ray and tests the same triangles with the same
 // test: the results are bit for bit those of Intersect / Occluded

@@ -76,7 +76,7 @@ struct Stack {
 // intervals and masks, which stay in registers only inside one function;
 // the single-ray Traverse in traversal.cc is one function for the same
 // reason.)
-template <bool kAnyHit, class D>
+template <bool kAnyHit, bool kFromEnd, class D>
 HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const Group& g,
                            size_t base, uint32_t lanes, Hit* best) {
   using V = hn::Vec<D>;
@@ -139,13 +139,25 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
           // clamped to the interval, for the lanes in `both`.
           const V tc = hn::Min(t_exit, hn::Max(t_entry, ts));
           const auto clamp = FromBits(d, both);
-          hn::Store(hn::IfThenElse(clamp, hn::Sub(tc, t_tol), t_entry), d, stack.t_entry[top]);
-          hn::Store(t_exit, d, stack.t_exit[top]);
-          stack.node[top] = far;
-          stack.lanes[top++] = need_far;
-          t_exit = hn::IfThenElse(clamp, hn::Add(tc, t_tol), t_exit);
-          index = near;
-          lanes = need_near;
+          const V near_exit = hn::IfThenElse(clamp, hn::Add(tc, t_tol), t_exit);
+          const V far_entry = hn::IfThenElse(clamp, hn::Sub(tc, t_tol), t_entry);
+          if (kFromEnd) {  // TraversalOptions::from_end: the far child first
+            hn::Store(t_entry, d, stack.t_entry[top]);
+            hn::Store(near_exit, d, stack.t_exit[top]);
+            stack.node[top] = near;
+            stack.lanes[top++] = need_near;
+            t_entry = far_entry;
+            index = far;
+            lanes = need_far;
+          } else {
+            hn::Store(far_entry, d, stack.t_entry[top]);
+            hn::Store(t_exit, d, stack.t_exit[top]);
+            stack.node[top] = far;
+            stack.lanes[top++] = need_far;
+            t_exit = near_exit;
+            index = near;
+            lanes = need_near;
+          }
         }
       }
       node = &nodes[index];
@@ -191,7 +203,7 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
   }
 }
 
-void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit,
+void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
                     Hit* best) {
   const hn::ScalableTag<float> d;
   const size_t n = hn::Lanes(d);
@@ -199,10 +211,16 @@ void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, boo
   for (size_t base = 0; base < kLanes; base += n) {
     const uint32_t lanes = (g.lanes >> base) & full;
     if (lanes == 0) continue;
-    if (any_hit) {
-      TraceChunk<true>(d, tree, p, g, base, lanes, best);
-    } else {
-      TraceChunk<false>(d, tree, p, g, base, lanes, best);
+    switch (search) {
+      case Search::kClosest:
+        TraceChunk<false, false>(d, tree, p, g, base, lanes, best);
+        break;
+      case Search::kAny:
+        TraceChunk<true, false>(d, tree, p, g, base, lanes, best);
+        break;
+      case Search::kAnyFromEnd:
+        TraceChunk<true, true>(d, tree, p, g, base, lanes, best);
+        break;
     }
   }
 }
@@ -221,8 +239,9 @@ namespace packet_internal {
 HWY_EXPORT(TraceGroupImpl);
 HWY_EXPORT(KernelTargetImpl);
 
-void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, bool any_hit, Hit* best) {
-  HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, any_hit, best);
+void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
+                Hit* best) {
+  HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, search, best);
 }
 
 const char* KernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTargetImpl)(); }

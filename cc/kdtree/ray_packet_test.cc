@@ -8,7 +8,8 @@
 // rays or fewer than 16 rays. The kernel is checked at every width this
 // machine runs (Highway targets: SSE4, AVX2, AVX-512). Shadow rays leaving their
 // origin triangles (OccludedPacket with origin_tris) against the single-ray traversal told
-// the same triangle, also when the "origin" is the triangle the ray hits.
+// the same triangle, also when the "origin" is the triangle the ray hits. Any-hit
+// queries also from the rays' ends (TraversalOptions::from_end), packets and single rays.
 #include "cc/kdtree/ray_packet.h"
 
 #include <cmath>
@@ -152,14 +153,18 @@ Counts Check(const TriangleSoup& soup, const KdTree& tree, const PacketSet& s, b
     const Ray* rays = &s.rays[k * kRayPacketSize];
     const int n = s.sizes[k];
     Hit hits[kRayPacketSize];
-    bool occ[kRayPacketSize];
+    bool occ[kRayPacketSize], occ_end[kRayPacketSize];
     IntersectPacket(tree, rays, n, hits);
     OccludedPacket(tree, rays, n, nullptr, occ);
+    TraversalOptions from_end;
+    from_end.from_end = true;
+    OccludedPacket(tree, rays, n, nullptr, occ_end, from_end);
     ++c.packets;
     for (int i = 0; i < n; ++i) {
       const Hit single = Intersect(tree, rays[i]);
       c.closest += !BitwiseSameHit(hits[i], single);
-      c.any += occ[i] != Occluded(tree, rays[i]);
+      const bool any = Occluded(tree, rays[i]);
+      c.any += (occ[i] != any) + (occ_end[i] != any) + (Occluded(tree, rays[i], from_end) != any);
       if (!brute) continue;
       const Hit ref = bf.Intersect(rays[i]);
       c.brute += ref.hit() ? !BitwiseSameHit(hits[i], ref) : hits[i].hit();
@@ -271,12 +276,19 @@ TEST_P(PacketVsSingle, OriginTrianglesPerLane) {
       }
       ++packets;
       for (const uint32_t* tris : {origin, hit_tri}) {
-        bool occ[kRayPacketSize];
+        bool occ[kRayPacketSize], occ_end[kRayPacketSize];
         OccludedPacket(tree_, rays, kRayPacketSize, tris, occ);
+        TraversalOptions from_end;
+        from_end.from_end = true;
+        OccludedPacket(tree_, rays, kRayPacketSize, tris, occ_end, from_end);
         for (int l = 0; l < kRayPacketSize; ++l) {
           TraversalOptions o;
           o.origin_tri = tris[l];
           differ += occ[l] != Occluded(tree_, rays[l], o);
+          differ += occ_end[l] != occ[l];
+          o.from_end = true;
+          differ += Occluded(tree_, rays[l], o) != occ[l];
+          o.from_end = false;
           Hit hits[kRayPacketSize];
           IntersectPacket(tree_, &rays[l], 1, hits, o);
           differ += !BitwiseSameHit(hits[0], Intersect(tree_, rays[l], o));

@@ -83,7 +83,8 @@ struct StackEntry {
 // reference, which keeps them in memory unless every call is inlined. The
 // packet kernel's TraceChunk (ray_packet_kernel.cc) is one function for the
 // same reason.
-template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox>
+template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox,
+          bool kFromEnd>
 Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
              TraversalCounters* counters) {
   Hit best;
@@ -153,10 +154,16 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const float lo = t_split < t_entry ? t_entry : t_split;
         const float ts = lo > t_exit ? t_exit : lo;
         assert(top < kMaxTraversalStack);
-        stack[top++] = StackEntry{far, ts - t_tol, t_exit};
-        _mm_prefetch(reinterpret_cast<const char*>(&nodes[far]), _MM_HINT_T0);
-        index = near;
-        t_exit = ts + t_tol;
+        if (kFromEnd) {  // TraversalOptions::from_end: the far child first
+          stack[top++] = StackEntry{near, t_entry, ts + t_tol};
+          index = far;
+          t_entry = ts - t_tol;
+        } else {
+          stack[top++] = StackEntry{far, ts - t_tol, t_exit};
+          _mm_prefetch(reinterpret_cast<const char*>(&nodes[far]), _MM_HINT_T0);
+          index = near;
+          t_exit = ts + t_tol;
+        }
       } else {
         // Parallel to the plane (t_split infinite) or in it (NaN): both
         // children whole when the origin is within delta of the plane, else
@@ -164,8 +171,8 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const float gap = node->split - org[axis];
         if (std::fabs(gap) <= delta) {
           assert(top < kMaxTraversalStack);
-          stack[top++] = StackEntry{far, t_entry, t_exit};
-          index = near;
+          stack[top++] = StackEntry{kFromEnd ? near : far, t_entry, t_exit};
+          index = kFromEnd ? far : near;
         } else {
           index = gap > 0 ? left : right;
         }
@@ -282,7 +289,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   }
 }
 
-template <bool kAnyHit, bool kCount, IntersectionMode kMode>
+template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kFromEnd>
 Hit DispatchLayout(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
                    TraversalCounters* counters) {
   // The leaf-ordered layout is used when present and complete (watertight mode
@@ -290,11 +297,22 @@ Hit DispatchLayout(const KdTree& tree, const Ray& ray, const TraversalOptions& o
   const bool ordered = kMode == IntersectionMode::kWatertight && HasLeafLayout(tree);
   const uint32_t o = options.origin_tri;
   if (ordered) {
-    return options.mailbox ? Traverse<kAnyHit, kCount, kMode, true, true>(tree, ray, o, counters)
-                           : Traverse<kAnyHit, kCount, kMode, true, false>(tree, ray, o, counters);
+    return options.mailbox
+               ? Traverse<kAnyHit, kCount, kMode, true, true, kFromEnd>(tree, ray, o, counters)
+               : Traverse<kAnyHit, kCount, kMode, true, false, kFromEnd>(tree, ray, o, counters);
   }
-  return options.mailbox ? Traverse<kAnyHit, kCount, kMode, false, true>(tree, ray, o, counters)
-                         : Traverse<kAnyHit, kCount, kMode, false, false>(tree, ray, o, counters);
+  return options.mailbox
+             ? Traverse<kAnyHit, kCount, kMode, false, true, kFromEnd>(tree, ray, o, counters)
+             : Traverse<kAnyHit, kCount, kMode, false, false, kFromEnd>(tree, ray, o, counters);
+}
+
+// The order matters to any-hit queries only (TraversalOptions::from_end).
+template <bool kAnyHit, bool kCount, IntersectionMode kMode>
+Hit DispatchOrder(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
+                  TraversalCounters* counters) {
+  return kAnyHit && options.from_end
+             ? DispatchLayout<kAnyHit, kCount, kMode, kAnyHit>(tree, ray, options, counters)
+             : DispatchLayout<kAnyHit, kCount, kMode, false>(tree, ray, options, counters);
 }
 
 template <bool kAnyHit>
@@ -302,15 +320,14 @@ Hit Dispatch(const KdTree& tree, const Ray& ray, TraversalCounters* counters,
              const TraversalOptions& options) {
   if (options.mode == IntersectionMode::kWatertight) {
     return counters != nullptr
-               ? DispatchLayout<kAnyHit, true, IntersectionMode::kWatertight>(tree, ray, options,
-                                                                             counters)
-               : DispatchLayout<kAnyHit, false, IntersectionMode::kWatertight>(tree, ray, options,
-                                                                              nullptr);
+               ? DispatchOrder<kAnyHit, true, IntersectionMode::kWatertight>(tree, ray, options,
+                                                                            counters)
+               : DispatchOrder<kAnyHit, false, IntersectionMode::kWatertight>(tree, ray, options,
+                                                                             nullptr);
   }
   return counters != nullptr
-             ? DispatchLayout<kAnyHit, true, IntersectionMode::kFast>(tree, ray, options, counters)
-             : DispatchLayout<kAnyHit, false, IntersectionMode::kFast>(tree, ray, options,
-                                                                      nullptr);
+             ? DispatchOrder<kAnyHit, true, IntersectionMode::kFast>(tree, ray, options, counters)
+             : DispatchOrder<kAnyHit, false, IntersectionMode::kFast>(tree, ray, options, nullptr);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// The traversal's speed options (leaf layout in packets of 4, mailboxing;
-// traversal.h, leaf_layout.h) against brute force, and the layout's contents.
+// The traversal's speed options (leaf layout in packets of 4, mailboxing, any
+// hit from the ray's end; traversal.h, leaf_layout.h) against brute force, and
+// the layout's contents.
 // Every combination must give exactly the brute-force answer (closest hit:
 // triangle, t, u, v; any hit: occlusion) on every ray.
 #include <gtest/gtest.h>
@@ -59,6 +60,12 @@ TEST_P(Options, EveryCombinationEqualsBruteForce) {
           }
         }
         if (Occluded(*t, ray, opt) != want.hit()) ++mismatches;
+        // From the ray's end: the same answer (and the counting path too).
+        TraversalOptions end = opt;
+        end.from_end = true;
+        TraversalCounters end_counters;
+        if (Occluded(*t, ray, end) != want.hit()) ++mismatches;
+        if (Occluded(*t, ray, end, &end_counters) != want.hit()) ++mismatches;
         hits += want.hit();
       }
       EXPECT_EQ(mismatches, 0) << scene << " " << preset << (t == &plain ? " by index" : " packets")

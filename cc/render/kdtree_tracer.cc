@@ -11,10 +11,15 @@ Hit KdTreeTracer::Intersect(const Ray& ray) const {
   return ::kdtree::Intersect(tree_, ray, options_);
 }
 
+// A ray that names its origin triangle is a secondary ray the renderer
+// spawned from a surface (RenderOptions::skip_origin): that triangle is left
+// untested, and the ray is searched from its end, the light for a shadow ray
+// (TraversalOptions::origin_tri, from_end).
 bool KdTreeTracer::Occluded(const Ray& ray, uint32_t origin_tri) const {
   if (origin_tri == kNoHit) return ::kdtree::Occluded(tree_, ray, options_);
   TraversalOptions o = options_;
   o.origin_tri = origin_tri;
+  o.from_end = true;
   return ::kdtree::Occluded(tree_, ray, o);
 }
 
@@ -24,7 +29,13 @@ void KdTreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
 
 void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                                   bool* occluded) const {
-  ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, options_);
+  if (origin_tris == nullptr) {
+    ::kdtree::OccludedPacket(tree_, rays, n, nullptr, occluded, options_);
+    return;
+  }
+  TraversalOptions o = options_;
+  o.from_end = true;  // as Occluded's secondary rays
+  ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, o);
 }
 
 }  // namespace kdtree

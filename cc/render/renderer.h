@@ -57,8 +57,9 @@ struct RenderOptions {
   // Beyond the report: shadow and AO rays tell Tracer::Occluded (and, with
   // packets, Tracer::OccludedPacket) the primary hit's triangle, which the
   // kd-tree then leaves untested (it can never hit it:
-  // TraversalOptions::origin_tri). Results, hence the image, are
-  // unchanged. Off: every triangle met is tested, as the
+  // TraversalOptions::origin_tri) and searches the ray from its end, the
+  // light for a shadow ray (TraversalOptions::from_end; KdTreeTracer).
+  // Results, hence the image, are unchanged. Off: every triangle met is tested, as the
   // counting pass (traversal_counts.h) counts them.
   bool skip_origin = false;
   // Keep every ray and its result in RenderResult::rays (primary rays in pixel

@@ -84,11 +84,15 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
   std::vector<char> bad(rays.size(), 0), bad_any(rays.size(), 0);
   TraversalOptions options;
   options.mode = mode;
+  // Any hit searched from the ray's end too (the renderer's secondary rays).
+  TraversalOptions from_end = options;
+  from_end.from_end = true;
   ParallelFor(rays.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Hit got = Intersect(tree, rays[i], WithTest(mode));
       bad[i] = !SameHit(got, reference[i]);
       bad_any[i] = Occluded(tree, rays[i], WithTest(mode)) != reference[i].hit();
+      bad_any[i] |= Occluded(tree, rays[i], from_end) != reference[i].hit();
     }
     // The packet traversal (ray_packet.h) on consecutive rays, kRayPacketSize
     // (16) at a time:
@@ -96,12 +100,14 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
     for (size_t i = begin; i < end; i += kRayPacketSize) {
       const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, end - i));
       Hit hits[kRayPacketSize];
-      bool occluded[kRayPacketSize];
+      bool occluded[kRayPacketSize], occluded_end[kRayPacketSize];
       IntersectPacket(tree, &rays[i], n, hits, options);
       OccludedPacket(tree, &rays[i], n, nullptr, occluded, options);
+      OccludedPacket(tree, &rays[i], n, nullptr, occluded_end, from_end);
       for (int l = 0; l < n; ++l) {
         bad[i + l] |= !SameHit(hits[l], reference[i + l]);
         bad_any[i + l] |= occluded[l] != reference[i + l].hit();
+        bad_any[i + l] |= occluded_end[l] != reference[i + l].hit();
       }
     }
   });

@@ -5,7 +5,9 @@
 // triangle, or another t (bitwise). Both tracers use the same triangle test and
 // the same tie rule (Closer() in ray.h), so a correct traversal reproduces the
 // reference exactly; "0 mismatches" is the only pass. The any-hit query
-// (Occluded) is checked against the reference's closest hit as well.
+// (Occluded) is checked against the reference's closest hit as well, front to
+// back and from the ray's end (TraversalOptions::from_end), single rays and
+// packets.
 //
 // Every result is also printed as one JSON line prefixed "ROBUST_JSON " (case,
 // preset, mode, rays, hits, mismatches), collected for the report.

@@ -101,7 +101,8 @@ ABSL_FLAG(bool, embree_rounds, true,
           "kd-tree's (false: Embree is built once, untimed, only to compare every ray).");
 ABSL_FLAG(bool, fast_render, false,
           "Also time the renderer's fastest mode (primary and shadow rays in packets of 4x4 "
-          "pixels, shadow rays leaving their origin triangle untested): record field "
+          "pixels, shadow rays leaving their origin triangle untested and searched from the "
+          "light): record field "
           "fast_render, held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
 ABSL_FLAG(double, memory_budget_gb, 0,
@@ -249,7 +250,8 @@ absl::Status Run() {
   ropt.threads = threads;
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
   // The renders: the kd-tree, optionally its fastest mode (packets of 4x4
-  // pixels, shadow rays leaving their origin triangle untested), optionally
+  // pixels, shadow rays leaving their origin triangle untested and searched
+  // from the light: RenderOptions::skip_origin), optionally
   // Embree. Their warm-ups are the untimed passes every run makes anyway over
   // the frame's rays: the kd-tree's recording render (the rays and hits for
   // the counting pass, the comparison and the dump), and the comparison pass
