@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <cstring>
 
 #include "cc/geometry/intersect.h"
 #include "cc/geometry/ray_check.h"
@@ -23,8 +24,52 @@ using ray_setup::kPad;
 namespace hn = hwy::HWY_NAMESPACE;
 namespace lane = packet_internal::HWY_NAMESPACE;
 static_assert(HWY_TARGET != HWY_SCALAR, "a leaf packet's four triangles in one vector");
-// A leaf packet's kPacketLanes triangles, one per lane.
-using D4 = hn::FixedTag<float, kPacketLanes>;
+// A leaf step tests kStepPackets leaf packets at once, a triangle per lane:
+// two (8 lanes) where the build's static target has 256-bit vectors
+// (--config=opt's -march=native on an AVX2 or AVX-512 machine), else one (4
+// lanes). Against one at a time, in one render_bench run (AVX-512 machine,
+// sah-packet, 7 paired rounds): T_R 1.06-1.07 on bunny, hairball-small,
+// engine, fforest and armadillo, 1.006 on city; the same code on both sides
+// gave 0.99-1.02. The tests run both (experiments/test.sh).
+using DL = hn::CappedTag<float, 2 * kPacketLanes>;
+using DU = hn::RebindToUnsigned<DL>;
+constexpr int kStepPackets = HWY_MAX_BYTES >= 32 ? 2 : 1;
+static_assert(kStepPackets * kPacketLanes == hn::MaxLanes(DL()), "a triangle per lane");
+constexpr uint32_t kStepLanes = (1u << (kStepPackets * kPacketLanes)) - 1;
+
+// The triangles of packets p0 and p1 (kStepPackets of them) in the lanes.
+HWY_INLINE lane::LaneTriangle<DL> StepTriangles(DL d, const packet_internal::Group& g,
+                                                const float* p0, const float* p1) {
+  if constexpr (kStepPackets == 1) {
+    (void)p1;
+    return lane::RepeatTriangles(d, g, p0);
+  } else {
+    const hn::Half<DL> dh;
+    const auto two = [&](int offset) {
+      return hn::Combine(d, hn::LoadU(dh, p1 + offset), hn::LoadU(dh, p0 + offset));
+    };
+    lane::LaneTriangle<DL> t;
+    for (int v = 0; v < 3; ++v) {
+      t.x[v] = two((3 * v + g.kx) * kPacketLanes);
+      t.y[v] = two((3 * v + g.ky) * kPacketLanes);
+      t.z[v] = two((3 * v + g.kz) * kPacketLanes);
+    }
+    return t;
+  }
+}
+
+// Their triangle indices (leaf_layout.h: the bit patterns after the vertices).
+HWY_INLINE hn::Vec<DU> StepIds(DU du, const float* p0, const float* p1) {
+  const uint32_t* i0 = reinterpret_cast<const uint32_t*>(p0 + kPacketIds);
+  if constexpr (kStepPackets == 1) {
+    (void)p1;
+    return hn::LoadU(du, i0);
+  } else {
+    const hn::Half<DU> dh;
+    return hn::Combine(du, hn::LoadU(dh, reinterpret_cast<const uint32_t*>(p1 + kPacketIds)),
+                       hn::LoadU(dh, i0));
+  }
+}
 }  // namespace
 
 bool ClipRayToBox(const Ray& ray, const AABB& box, float* t0, float* t1) {
@@ -108,18 +153,18 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   // Triangles wholly behind the origin are rejected in the 4-wide step too
   // (lane_test-inl.h RejectRays), as the watertight test rejects them.
   const bool behind = ray.tmin >= 0.0f;
-  // The ray in every lane of a leaf packet test (lane_test-inl.h).
-  const D4 d4;
-  const lane::Frames<D4> frames(d4, wray, ray.tmin);
+  // The ray in every lane of a leaf step (lane_test-inl.h).
+  const DL dl;
+  const DU du;
+  const lane::Frames<DL> frames(dl, wray, ray.tmin);
   packet_internal::Group axes;
   axes.kx = wray.kx;
   axes.ky = wray.ky;
   axes.kz = wray.kz;
-  // The origin triangle (TraversalOptions::origin_tri), watertight only; the
-  // packets' lane 0 also carries kLastPacket, masked off before comparing.
+  // The origin triangle (TraversalOptions::origin_tri), watertight only
+  // (kNoHit matches no lane: the ids are stored without kLastPacket's bit).
   if (kMode != IntersectionMode::kWatertight) origin_tri = kNoHit;
-  const __m128i skip_id = _mm_set1_epi32(static_cast<int>(origin_tri));
-  const __m128i id_bits = _mm_setr_epi32(static_cast<int>(~kLastPacket), -1, -1, -1);
+  const hn::Vec<DU> skip_id = hn::Set(du, origin_tri);
   uint32_t mailbox[kMailboxSlots];
   if (kMailbox) {
     for (int i = 0; i < kMailboxSlots; ++i) mailbox[i] = kNoHit;
@@ -185,36 +230,44 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
       const float* packet =
           first == kEmptyLeaf ? nullptr : soa + static_cast<size_t>(first) * kPacketFloats;
       while (packet != nullptr) {
-        const __m128i ids = _mm_loadu_si128(reinterpret_cast<const __m128i*>(packet + kPacketIds));
-        int live = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(ids, _mm_set1_epi32(-1)))) ^
-                   0xF;  // lanes holding a triangle (not kPadLane)
-        alignas(16) uint32_t id[kPacketLanes];
-        _mm_store_si128(reinterpret_cast<__m128i*>(id), ids);
-        const bool last = (id[0] & kLastPacket) != 0;
-        id[0] &= ~kLastPacket;
+        // This step's packets: `packet` and, when a step takes two and the
+        // leaf has another, the next one (else `packet` again, masked off).
+        uint32_t first_id;
+        std::memcpy(&first_id, packet + kPacketIds, sizeof(first_id));
+        const bool only = kStepPackets == 1 || (first_id & kLastPacket) != 0;
+        const float* second = only ? packet : packet + kPacketFloats;
+        const hn::Vec<DU> ids = StepIds(du, packet, second);
+        HWY_ALIGN uint32_t id[kStepPackets * kPacketLanes];
+        hn::Store(hn::And(ids, hn::Set(du, ~kLastPacket)), du, id);
+        // Lanes holding a triangle (not kPadLane) of this leaf.
+        int live = static_cast<int>(~lane::Bits(du, hn::Eq(ids, hn::Set(du, kPadLane))) &
+                                    (only ? (1u << kPacketLanes) - 1 : kStepLanes));
+        uint32_t last_id;
+        std::memcpy(&last_id, second + kPacketIds, sizeof(last_id));
+        const bool last = (last_id & kLastPacket) != 0;
         // Counting: the mailbox is checked before the test, so N_IT counts
         // the references really tested.
         if (kMailbox && kCount) live = Unmailboxed(live, id, mailbox);
-        live &= ~_mm_movemask_ps(
-            _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(ids, id_bits), skip_id)));
+        live &= ~static_cast<int>(lane::Bits(du, hn::Eq(hn::Load(du, id), skip_id)));
         if (kCount) counters->triangle_tests += __builtin_popcount(live);
         // The packet kernel's per-lane test (lane_test-inl.h) with the
-        // packet's four triangles in the lanes: the rejection, then the rest
-        // of the test in vectors for the lanes with decided signs (bit for
-        // bit the scalar test's t, u, v), the scalar test for the others. All
-        // four are tested against the same best.t; Closer then drops a hit
+        // packets' triangles in the lanes: the rejection, then the rest of
+        // the test in vectors for the lanes with decided signs (bit for bit
+        // the scalar test's t, u, v), the scalar test for the others. All
+        // lanes are tested against the same best.t; Closer then drops a hit
         // beyond one an earlier lane found, as the scalar test with that
         // lane's t as tmax would have.
-        const lane::LaneShear<D4> s =
-            lane::ShearLanes(d4, frames, lane::RepeatTriangles(d4, axes, packet));
-        live &= ~lane::RejectRays(d4, frames, s, behind ? 0xFu : 0u);
+        const lane::LaneShear<DL> s =
+            lane::ShearLanes(dl, frames, StepTriangles(dl, axes, packet, second));
+        live &= ~static_cast<int>(lane::RejectRays(dl, frames, s, behind ? kStepLanes : 0u));
         // Fast path: the rejection costs the same with or without a lane, so
         // only the rest of the test is mailboxed.
         if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
         if (live != 0) {
-          HWY_ALIGN float tmax[kPacketLanes] = {best.t, best.t, best.t, best.t};
+          HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
+          for (float& t : tmax) t = best.t;
           lane::LaneHits lh;
-          lane::FinishLanes(d4, frames, s, static_cast<uint32_t>(live), tmax, &lh);
+          lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
           for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
             const int l = __builtin_ctz(m);
             float t, u, v;
@@ -226,7 +279,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
               hit = true;
             } else {
               Vec3 a, b, c;
-              PacketTriangle(packet, l, &a, &b, &c);
+              PacketTriangle(l < kPacketLanes ? packet : second, l % kPacketLanes, &a, &b, &c);
               hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
             }
             // Any hit: best holds no hit yet (the first one returns), and a
@@ -240,7 +293,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
             }
           }
         }
-        packet = last ? nullptr : packet + kPacketFloats;
+        packet = last ? nullptr : second + kPacketFloats;
       }
     } else {
       const uint32_t list = node->index();

@@ -57,7 +57,8 @@
 //    the tree has them, else from KdTree::verts by index.
 //  - The common rejection of the watertight test (edge functions of definitely
 //    different signs, the same float expressions as watertight.h) runs first,
-//    on 4 triangles at once (SSE or wider) with the packets, else inlined per
+//    with the packets on 8 triangles at once (two packets, where the build's
+//    static target has 256-bit vectors) or 4 (SSE), else inlined per
 //    triangle; with the packets it also drops triangles whose three vertices
 //    lie behind the origin (tmin >= 0), and the rest of the test runs in
 //    vectors too, the scalar test only for lanes within rounding of an edge
