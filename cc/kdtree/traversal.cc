@@ -150,7 +150,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   best.t = ray.tmax;
   const float slack = setup.slack;
   const WatertightRay& wray = setup.wray;
-  // Triangles wholly behind the origin are rejected in the 4-wide step too
+  // Triangles wholly behind the origin are rejected in the leaf step too
   // (lane_test-inl.h RejectRays), as the watertight test rejects them.
   const bool behind = ray.tmin >= 0.0f;
   // The ray in every lane of a leaf step (lane_test-inl.h).
