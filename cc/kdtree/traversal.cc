@@ -237,8 +237,9 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const bool only = kStepPackets == 1 || (first_id & kLastPacket) != 0;
         const float* second = only ? packet : packet + kPacketFloats;
         const hn::Vec<DU> ids = StepIds(du, packet, second);
+        const hn::Vec<DU> clean_ids = hn::And(ids, hn::Set(du, ~kLastPacket));
         HWY_ALIGN uint32_t id[kStepPackets * kPacketLanes];
-        hn::Store(hn::And(ids, hn::Set(du, ~kLastPacket)), du, id);
+        hn::Store(clean_ids, du, id);
         // Lanes holding a triangle (not kPadLane) of this leaf.
         int live = static_cast<int>(~lane::Bits(du, hn::Eq(ids, hn::Set(du, kPadLane))) &
                                     (only ? (1u << kPacketLanes) - 1 : kStepLanes));
@@ -248,7 +249,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         // Counting: the mailbox is checked before the test, so N_IT counts
         // the references really tested.
         if (kMailbox && kCount) live = Unmailboxed(live, id, mailbox);
-        live &= ~static_cast<int>(lane::Bits(du, hn::Eq(hn::Load(du, id), skip_id)));
+        live &= ~static_cast<int>(lane::Bits(du, hn::Eq(clean_ids, skip_id)));
         if (kCount) counters->triangle_tests += __builtin_popcount(live);
         // The packet kernel's per-lane test (lane_test-inl.h) with the
         // packets' triangles in the lanes: the rejection, then the rest of

@@ -29,12 +29,8 @@ void KdTreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
 
 void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                                   bool* occluded) const {
-  if (origin_tris == nullptr) {
-    ::kdtree::OccludedPacket(tree_, rays, n, nullptr, occluded, options_);
-    return;
-  }
   TraversalOptions o = options_;
-  o.from_end = true;  // as Occluded's secondary rays
+  o.from_end = o.from_end || origin_tris != nullptr;  // as Occluded's secondary rays
   ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, o);
 }
 
