@@ -218,10 +218,9 @@ def main(argv=None):
     parser.add_argument("--force", action="store_true",
                         help="make the selected scenes again even if cached (e.g. after a "
                              "change to cc/scenes; downloads stay cached)")
-    parser.add_argument("--compilation-mode", choices=("opt", "fastbuild"), default=None,
-                        help="how the generators are built (default: fastbuild for the test "
-                             "profile, which CI's bazel test reuses; opt, meaning "
-                             "--config=opt like the tools, otherwise). "
+    parser.add_argument("--compilation-mode", choices=("opt", "fastbuild"), default="opt",
+                        help="how the generators are built (default: opt, meaning "
+                             "--config=opt like the tools and the tests). "
                              "Output bytes are the same either way.")
     args = parser.parse_args(argv)
 
@@ -234,8 +233,7 @@ def main(argv=None):
         print_list(entries, index)
         return 0
 
-    mode = args.compilation_mode or ("fastbuild" if args.profile == "test" and not args.scene
-                                     else "opt")
+    mode = args.compilation_mode
     tools = Tools(mode)
     what = ", ".join(args.scene) if args.scene else f"profile '{args.profile}'"
     log(f"fetch.py: {len(entries)} scenes for {what} into {SCENES.relative_to(REPO)}/")
