@@ -279,16 +279,33 @@ def render_summary(records):
 SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin")
 EMBREE_SINGLE = ("embree",)
 EMBREE_ALL = ("embree", "embree_packet")
+PACKET_MODES = ("kd_packet", "kd_packet_origin", "embree_packet")
 # Issue 23's bars: single rays, best mode.
 SINGLE_TARGET, BEST_TARGET = 0.8, 1.0
 
 
-def per_round_ratio(tracers, theirs, ours):
+def t_r_runs(tracers, name):
+    """A tracer's render times, one per round in round order."""
+    return tracers.get(name, {}).get("T_R_runs")
+
+
+def trace_runs(tracers, name):
+    """A tracer's render times less the replay of its mode, round by round
+    (render_bench --replay: the renderer's own work), i.e. its tracing time
+    alone; None without the replays."""
+    mode = "replay_packet" if name.split("@")[0] in PACKET_MODES else "replay"
+    runs, replay = t_r_runs(tracers, name), t_r_runs(tracers, mode)
+    if not runs or not replay:
+        return None
+    return [t - r for t, r in zip(runs, replay)]
+
+
+def per_round_ratio(tracers, theirs, ours, runs_of=t_r_runs):
     """Per round, the fastest of Embree's modes `theirs` over the fastest of
-    our modes `ours` (T_R_runs: one time per round, in round order), as
+    our modes `ours` (runs_of: one time per round, in round order), as
     (median, min, max) over the rounds; None when a side has no mode."""
-    emb = [tracers[n]["T_R_runs"] for n in theirs if tracers.get(n, {}).get("T_R_runs")]
-    kd = [tracers[n]["T_R_runs"] for n in ours if tracers.get(n, {}).get("T_R_runs")]
+    emb = [x for x in (runs_of(tracers, n) for n in theirs) if x]
+    kd = [x for x in (runs_of(tracers, n) for n in ours) if x]
     if not emb or not kd:
         return None
     rounds = min(len(x) for x in emb + kd)
@@ -298,28 +315,36 @@ def per_round_ratio(tracers, theirs, ours):
 
 def targets_summary(records):
     """Issue 23's targets per scene (one thread): single/single and
-    best/best, paired per round."""
+    best/best, paired per round, by render time and, where the record has the
+    replays, by tracing time alone."""
     out = ["| scene | triangles | preset | single rays / Embree's single rays "
-           "| best mode / Embree's best mode |", "|---|---|---|---|---|"]
-    single_all, best_all = [], []
+           "| best mode / Embree's best mode | tracing alone: single / single "
+           "| tracing alone: best / best |", "|---|---|---|---|---|---|---|"]
+    columns = [[], [], [], []]
     one_thread = [r for r in records if r.get("threads") == 1]
     for r in sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"])):
         t = r["tracers"]
         ours = [n for n in t if n.startswith("kd")]
-        single = per_round_ratio(t, EMBREE_SINGLE, [n for n in ours if n in SINGLE_MODES])
-        best = per_round_ratio(t, EMBREE_ALL, ours)
+        single = [n for n in ours if n in SINGLE_MODES]
+        values = [per_round_ratio(t, EMBREE_SINGLE, single),
+                  per_round_ratio(t, EMBREE_ALL, ours),
+                  per_round_ratio(t, EMBREE_SINGLE, single, trace_runs),
+                  per_round_ratio(t, EMBREE_ALL, ours, trace_runs)]
         cells = []
-        for value, bar, acc in ((single, SINGLE_TARGET, single_all), (best, BEST_TARGET, best_all)):
+        for k, value in enumerate(values):
             if value is None:
                 cells.append("-")
                 continue
-            acc.append(value[0])
+            columns[k].append(value[0])
+            bar = SINGLE_TARGET if k % 2 == 0 else BEST_TARGET
             cells.append("%.2f [%.2f..%.2f]%s" % (value + (" (met)" if value[0] >= bar else "",)))
-        out.append("| %s | %s | %s | %s | %s |" % (r["scene"], format(r["n_tri"], ","),
-                                                r["preset"], cells[0], cells[1]))
-    for name, values, bar in (("Single rays against Embree's single rays", single_all,
-                               SINGLE_TARGET),
-                              ("Best mode against Embree's best mode", best_all, BEST_TARGET)):
+        out.append("| %s | %s | %s | %s |" % (r["scene"], format(r["n_tri"], ","), r["preset"],
+                                              " | ".join(cells)))
+    names = ("Single rays against Embree's single rays", "Best mode against Embree's best mode",
+             "Tracing alone, single rays against Embree's single rays",
+             "Tracing alone, best mode against Embree's best mode")
+    for k, (name, values) in enumerate(zip(names, columns)):
+        bar = SINGLE_TARGET if k % 2 == 0 else BEST_TARGET
         if values:
             out.append("")
             out.append("%s over %d rows: median %.2f, range %.2f to %.2f, %d at %.1f or "

@@ -101,6 +101,15 @@ class BenchTest(unittest.TestCase):
                       "range 0.80 to 0.80, 1 at 0.8 or more.", text)
         self.assertIn("Best mode against Embree's best mode over 1 rows: median 1.00, "
                       "range 1.00 to 1.00, 1 at 1.0 or more.", text)
+        # With the replays (render_bench --replay), each mode less its replay per
+        # round. Single: Embree 1.1, 1.0, 1.1 over our faster 1.1, 1.5, 1.5. Best:
+        # Embree's packets 0.8, 0.6, 0.5 over kd_packet_origin's 0.6 each round.
+        traced = dict(r, tracers=dict(r["tracers"], replay=runs(0.5, 0.5, 0.5),
+                                      replay_packet=runs(0.4, 0.4, 0.4)))
+        self.assertIn("(met) | 0.73 [0.67..1.00] | 1.00 [0.83..1.33] (met) |",
+                      bench.targets_summary([traced]))
+        self.assertIn("Tracing alone, best mode against Embree's best mode over 1 rows: "
+                      "median 1.00", bench.targets_summary([traced]))
         # Without Embree's packets, the best mode is against its single rays.
         del r["tracers"]["embree_packet"]
         self.assertIn("| 1.60 [1.50..1.60] (met) |", bench.targets_summary([r]))

@@ -99,11 +99,26 @@ check([r["threads"] for r in render] == [1, 2], "one render record per thread co
 for r in render:
     for k in ["bench", "scene", "n_tri", "preset", "threads", "tile", "repeats", "rays", "primary",
               "shadow", "ao", "leaf_layout_bytes", "tracers", "ratio_kd_over_embree",
-              "ratio_kd_over_embree_packet", "embree_native_ray16", "validation", "timing",
+              "ratio_kd_over_embree_packet", "ratio_trace_only", "embree_native_ray16",
+              "validation", "timing",
               "provenance"]:
         check(k in r, "render record has no " + k)
     check(r["bench"] == "render" and r["scene"] == "tiny" and r["n_tri"] == 10, "render: scene")
-    check(list(r["tracers"]) == ["kd", "kd_packet", "embree", "embree_packet"], "render: tracers")
+    traced = ["kd", "kd_packet", "embree", "embree_packet"]
+    replays = ["replay", "replay_packet"] if r["threads"] == 1 else []
+    check(list(r["tracers"]) == traced + replays, "render: tracers (replays with one thread)")
+    if replays:
+        t = r["tracers"]
+        for name in traced:
+            replay = t["replay_packet" if name.endswith("packet") else "replay"]["T_R_runs"]
+            less = sorted(a - b for a, b in zip(t[name]["T_R_runs"], replay))
+            check(abs(t[name]["trace_s_median"] - sum(less) / 2) < 1e-12,
+                  "render: %s's tracing time, its mode's replay subtracted per round" % name)
+        check(set(r["ratio_trace_only"]) == {"kd", "kd_packet"} and
+              set(r["ratio_trace_only"]["kd"]) == {"embree", "embree_packet"},
+              "render: tracing-time ratios")
+    else:
+        check(r["ratio_trace_only"] == {}, "render: no replays with two threads")
     for name, t in r["tracers"].items():
         check(len(t["T_R_runs"]) == 2 and len(t["T_R_warmup_runs"]) == 1,
               "render: %s runs apart" % name)
@@ -120,8 +135,10 @@ for r in render:
     check(r["timing"]["rounds"] == 2 and r["timing"]["warmup"] == 1, "render: timing")
     check_provenance(r, "render")
 env = [json.loads(l) for l in open("env.jsonl")]
-check(len(env) == 1 and list(env[0]["tracers"]) == ["kd_packet_origin", "env:kt30.env"],
-      "env: the preset's tree and the environment file's")
+check(len(env) == 1 and list(env[0]["tracers"]) == ["kd_packet_origin", "env:kt30.env", "replay",
+                                                     "replay_packet"],
+      "env: the preset's tree and the environment file's, then the replays")
+check("trace_s_median" in env[0]["tracers"]["env:kt30.env"], "env: a tracing time")
 check(env[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_packet_origin": 0,
                                                              "env:kt30.env": 0}, "env: variants")
 print("ok")

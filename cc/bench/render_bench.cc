@@ -28,6 +28,19 @@
 // process ran up to 34 % apart, so compare paired ratios over several scenes.
 // One JSON line per (scene, threads) is appended to --out.
 //
+// The renderer's own work (camera rays, hit points, shadow-ray spawns,
+// shading) is in every T_R, the same for every tracer: 20-34 ms of an 800x800
+// render here, a quarter to a third of Embree's. So the ratios of T_R
+// understate how the tracers differ. With one thread (--replay, the default),
+// two more entries, replay and replay_packet, render with answers recorded
+// from kd (cc/render/replay_tracer.h) in the same rounds: the renderer's work
+// alone, per mode. Each tracer's T_R less its mode's replay in the same round
+// is its tracing time (trace_s_median), and ratio_trace_only holds, per
+// kd-tree variant, the paired ratio of each Embree mode's tracing time to
+// its own. The replay renders run without the traversal's memory traffic, so
+// they are a lower bound of the renderer's work in a real render, and the
+// tracing times an upper bound.
+//
 // The timing method is kdrt's (issue 22): before the rounds, every tracer
 // renders --warmup times untimed (recorded apart as T_R_warmup_runs); the
 // rounds of a thread count hold the machine-wide TimingLock
@@ -72,11 +85,11 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "cc/base/json_line.h"
-#include "cc/base/median.h"
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
 #include "cc/bench/render_check.h"
+#include "cc/bench/render_times.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/brute_force.h"
@@ -90,6 +103,7 @@
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
 #include "cc/render/renderer.h"
+#include "cc/render/replay_tracer.h"
 #include "cc/render/view.h"
 #include "cc/tools/paths.h"
 
@@ -123,25 +137,17 @@ ABSL_FLAG(bool, env_packets, false,
 ABSL_FLAG(bool, embree_packets, true,
           "Also time Embree with packets of 4x4 pixels (rtcIntersect16 / rtcOccluded16) as "
           "tracer embree_packet, the bar for kd_packet.");
+ABSL_FLAG(bool, replay, true,
+          "With one thread, also time the renderer's own work per mode: renders whose tracer "
+          "replays recorded answers (replay_tracer.h), as replay and replay_packet, and each "
+          "tracer's time less the replay of its mode, round by round (trace_s_median, "
+          "ratio_trace_only).");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
 
 namespace kdtree {
 namespace {
 
-// Median over rounds of a[r] / b[r] (whole rounds ran up to 34 % apart on
-// the measured VMs; pairing puts such a stretch on both).
-double PairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
-  return Median(PairedRatios(a, b));
-}
-
-// A variant and its times.
-struct Entry : bench::RenderVariant {
-  Entry(std::string n, const Tracer* t, bool p = false, bool s = false)
-      : RenderVariant{std::move(n), t, p, s} {}
-  std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
-  std::vector<double> warmup;                    // untimed T_R before the rounds
-  uint64_t rays = 0;
-};
+using bench::Entry;
 
 // The run's shared context: where its numbers come from, and the lock its
 // timed rounds hold.
@@ -267,6 +273,16 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       if (absl::GetFlag(FLAGS_embree_packets)) entries.emplace_back("embree_packet", embree.get(), true);
     }
     const size_t n_kd = proto.size();  // entries[0, n_kd) are kd-trees
+    const size_t n_traced = entries.size();  // then Embree's, then the replays
+    std::vector<std::unique_ptr<ReplayTracer>> replays;
+    if (absl::GetFlag(FLAGS_replay) && threads == 1) {
+      for (const bool packets : {false, true}) {
+        replays.push_back(std::make_unique<ReplayTracer>(kd));
+        entries.emplace_back(packets ? "replay_packet" : "replay", replays.back().get(), packets,
+                             true);
+        entries.back().replay = replays.back().get();
+      }
+    }
     RenderOptions topt = ropt;
     topt.threads = threads;
     topt.tile_size = absl::GetFlag(FLAGS_tile);
@@ -279,12 +295,27 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       RenderOptions o = topt;
       o.packets = e.packets;
       o.skip_origin = e.skip_origin;
+      if (e.replay != nullptr) e.replay->Rewind();
       RenderResult r = Render(*soup, *e.tracer, view, o);
       if (e.tracer != embree.get() && r.rgb != recorded.rgb) {
         return absl::InternalError(absl::StrCat(e.name, ": image differs"));
       }
+      if (e.replay != nullptr && e.replay->overran()) {
+        return absl::InternalError(absl::StrCat(e.name, ": more queries than recorded"));
+      }
       return r;
     };
+    // The replays' answers: one render of kd in their mode, recorded.
+    for (Entry& e : entries) {
+      if (e.replay == nullptr) continue;
+      RenderOptions o = topt;
+      o.packets = e.packets;
+      o.skip_origin = e.skip_origin;
+      e.replay->Record();
+      if (Render(*soup, *e.tracer, view, o).rgb != recorded.rgb) {
+        return absl::InternalError(absl::StrCat(e.name, ": recorded image differs"));
+      }
+    }
     // Warm-ups, untimed and outside the lock.
     const int warmup = absl::GetFlag(FLAGS_warmup);
     for (int w = 0; w < warmup; ++w) {
@@ -314,33 +345,13 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     }
     ctx.lock->Release();
     const double lock_wait_s = ctx.lock->waited_seconds() - waited_before;
-    const auto min_of = [](const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); };
-    Json tracers = Json::object();
-    for (const Entry& e : entries) {
-      tracers[e.name] = {{"T_R_runs", e.runs},
-                         {"T_R_median", Median(e.runs)},
-                         {"T_R_min", min_of(e.runs)},
-                         {"mrays_per_s_median", e.rays / Median(e.runs) / 1e6},
-                         {"primary_s_median", Median(e.primary)},
-                         {"secondary_s_median", Median(e.secondary)},
-                         {"first_over_this_paired", PairedRatio(entries[0].runs, e.runs)},
-                         {"T_R_warmup_runs", e.warmup}};
-    }
+    Json tracers = bench::TracerTimes(entries);
     // Ratios of each kd-tree tracer to Embree's single rays and, when timed,
-    // to its packets.
-    const auto ratios_to = [&](const Entry& em) {
-      Json ratios = Json::object();
-      for (size_t k = 0; k < n_kd; ++k) {
-        const Entry& e = entries[k];
-        ratios[e.name] = {{"median", Median(em.runs) / Median(e.runs)},
-                          {"min", min_of(em.runs) / min_of(e.runs)},
-                          {"paired", PairedRatio(em.runs, e.runs)}};
-      }
-      return ratios;
-    };
-    Json ratios = Json::object(), packet_ratios = Json::object();
-    if (use_embree) ratios = ratios_to(entries[n_kd]);
-    if (entries.size() > n_kd + 1) packet_ratios = ratios_to(entries[n_kd + 1]);
+    // to its packets; with the replays, of the tracing times alone too.
+    Json ratios = Json::object(), packet_ratios = Json::object(), trace_only = Json::object();
+    if (use_embree) ratios = bench::RatiosTo(entries, n_kd, entries[n_kd]);
+    if (n_traced > n_kd + 1) packet_ratios = bench::RatiosTo(entries, n_kd, entries[n_kd + 1]);
+    if (!replays.empty()) trace_only = bench::TraceOnly(entries, n_kd, n_traced, &tracers);
     Json rec = {{"bench", "render"},
                 {"scene", scene},
                 {"n_tri", soup->size()},
@@ -356,6 +367,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"tracers", std::move(tracers)},
                 {"ratio_kd_over_embree", std::move(ratios)},
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},
+                {"ratio_trace_only", std::move(trace_only)},
                 {"embree_native_ray16", embree != nullptr && embree->native_ray16()}};
     rec["validation"] = {{"variants_vs_kd_mismatches", variant_json},
                          {"brute_force_checked", checked},

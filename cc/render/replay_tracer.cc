@@ -1,0 +1,72 @@
+#include "cc/render/replay_tracer.h"
+
+namespace kdtree {
+
+void ReplayTracer::Record() {
+  recording_ = true;
+  hits_.clear();
+  occluded_.clear();
+  next_hit_ = next_occluded_ = 0;
+  overran_ = false;
+}
+
+void ReplayTracer::Rewind() {
+  recording_ = false;
+  next_hit_ = next_occluded_ = 0;
+  overran_ = false;
+}
+
+Hit ReplayTracer::Intersect(const Ray& ray) const {
+  if (recording_) {
+    hits_.push_back(inner_.Intersect(ray));
+    return hits_.back();
+  }
+  if (next_hit_ < hits_.size()) return hits_[next_hit_++];
+  overran_ = true;
+  return Hit();
+}
+
+bool ReplayTracer::Occluded(const Ray& ray, uint32_t origin_tri) const {
+  if (recording_) {
+    occluded_.push_back(inner_.Occluded(ray, origin_tri));
+    return occluded_.back() != 0;
+  }
+  if (next_occluded_ < occluded_.size()) return occluded_[next_occluded_++] != 0;
+  overran_ = true;
+  return false;
+}
+
+void ReplayTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
+  if (recording_) {
+    inner_.IntersectPacket(rays, n, hits);
+    hits_.insert(hits_.end(), hits, hits + n);
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (next_hit_ < hits_.size()) {
+      hits[i] = hits_[next_hit_++];
+    } else {
+      hits[i] = Hit();
+      overran_ = true;
+    }
+  }
+}
+
+void ReplayTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                                  bool* occluded) const {
+  if (recording_) {
+    inner_.OccludedPacket(rays, n, origin_tris, occluded);
+    occluded_.insert(occluded_.end(), occluded, occluded + n);
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (next_occluded_ < occluded_.size()) {
+      occluded[i] = occluded_[next_occluded_++] != 0;
+    } else {
+      occluded[i] = false;
+      overran_ = true;
+    }
+  }
+}
+
+}  // namespace kdtree
