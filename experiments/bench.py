@@ -18,7 +18,10 @@ Issue 23's targets get a table of their own (targets_summary): per scene of
 the render records, one thread, our fastest single-ray mode against Embree's
 single rays (target 0.8) and our best mode against Embree's best mode (target
 1.0), each per round (the faster mode of each side in that round), then the
-median and range over the rounds.
+median and range over the rounds; by render time (T_R) and, where the
+records have render_bench's replays, by tracing time alone (each mode's T_R
+less the replay of its mode in the same round: the renderer's own work,
+shared by every tracer, taken out).
 
 Numbers: T_B is the median of --repeats builds, and also the fastest, since
 on a shared or virtual machine the slow runs carry other load; Mtri/s =
