@@ -29,9 +29,11 @@
 // One JSON line per (scene, threads) is appended to --out.
 //
 // The renderer's own work (camera rays, hit points, shadow-ray spawns,
-// shading) is in every T_R, the same for every tracer: 20-34 ms of an 800x800
-// render here, a quarter to a third of Embree's. So the ratios of T_R
-// understate how the tracers differ. With one thread (--replay, the default),
+// shading) is in every T_R, the same for every tracer: 11-65 ms of an 800x800
+// render on the 25 standard scenes of 50k triangles or more (2026-12-05),
+// 0.20-0.53 of Embree's single-ray T_R and 0.24-0.84 of its packets'. So the
+// ratios of T_R understate how the tracers differ. With one thread (--replay,
+// the default),
 // two more entries, replay and replay_packet, render with answers recorded
 // from kd (cc/render/replay_tracer.h) in the same rounds: the renderer's work
 // alone, per mode. Each tracer's T_R less its mode's replay in the same round
