@@ -33,15 +33,14 @@
 // render on the 25 standard scenes of 50k triangles or more (2026-12-05),
 // 0.20-0.53 of Embree's single-ray T_R and 0.24-0.84 of its packets'. So the
 // ratios of T_R understate how the tracers differ. With one thread (--replay,
-// the default),
-// two more entries, replay and replay_packet, render with answers recorded
-// from kd (cc/render/replay_tracer.h) in the same rounds: the renderer's work
-// alone, per mode. Each tracer's T_R less its mode's replay in the same round
-// is its tracing time (trace_s_median), and ratio_trace_only holds, per
-// kd-tree variant, the paired ratio of each Embree mode's tracing time to
-// its own. The replay renders run without the traversal's memory traffic, so
-// they are a lower bound of the renderer's work in a real render, and the
-// tracing times an upper bound.
+// the default), two more entries, replay and replay_packet, render with
+// answers recorded from kd (cc/render/replay_tracer.h) in the same rounds:
+// the renderer's work alone, per mode. Each tracer's T_R less its mode's
+// replay in the same round is its tracing time (trace_s_median), and
+// ratio_trace_only holds, per kd-tree variant, the paired ratio of each
+// Embree mode's tracing time to its own. The replay renders run without the
+// traversal's memory traffic, so they are a lower bound of the renderer's
+// work in a real render, and the tracing times an upper bound.
 //
 // The timing method is kdrt's (issue 22): before the rounds, every tracer
 // renders --warmup times untimed (recorded apart as T_R_warmup_runs); the
