@@ -306,13 +306,22 @@ def trace_runs(tracers, name):
 def per_round_ratio(tracers, theirs, ours, runs_of=t_r_runs):
     """Per round, the fastest of Embree's modes `theirs` over the fastest of
     our modes `ours` (runs_of: one time per round, in round order), as
-    (median, min, max) over the rounds; None when a side has no mode."""
+    (median, min, max) over the rounds; None when a side has no mode. A time
+    that is not positive (a tracing time within the noise of its replay) is
+    left out, and so is a round with no positive time on one side."""
     emb = [x for x in (runs_of(tracers, n) for n in theirs) if x]
     kd = [x for x in (runs_of(tracers, n) for n in ours) if x]
     if not emb or not kd:
         return None
     rounds = min(len(x) for x in emb + kd)
-    r = [min(e[i] for e in emb) / min(k[i] for k in kd) for i in range(rounds)]
+    r = []
+    for i in range(rounds):
+        a = [e[i] for e in emb if e[i] > 0]
+        b = [k[i] for k in kd if k[i] > 0]
+        if a and b:
+            r.append(min(a) / min(b))
+    if not r:
+        return None
     return statistics.median(r), min(r), max(r)
 
 

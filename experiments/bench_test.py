@@ -110,6 +110,13 @@ class BenchTest(unittest.TestCase):
                       bench.targets_summary([traced]))
         self.assertIn("Tracing alone, best mode against Embree's best mode over 1 rows: "
                       "median 1.00", bench.targets_summary([traced]))
+        # A tracing time that is not positive is left out: in round 2 Embree's
+        # single rays (1.5 - 1.5), so single/single has no ratio there (1.1/1.1,
+        # 1.1/1.5) and best/best takes Embree's packets (0.8/0.6, 0.6/0.5,
+        # 0.5/0.6).
+        noisy = dict(traced, tracers=dict(traced["tracers"], replay=runs(0.5, 1.5, 0.5)))
+        self.assertIn("(met) | 0.87 [0.73..1.00] (met) | 1.20 [0.83..1.33] (met) |",
+                      bench.targets_summary([noisy]))
         # Without Embree's packets, the best mode is against its single rays.
         del r["tracers"]["embree_packet"]
         self.assertIn("| 1.60 [1.50..1.60] (met) |", bench.targets_summary([r]))
