@@ -287,17 +287,20 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     RenderOptions topt = ropt;
     topt.threads = threads;
     topt.tile_size = absl::GetFlag(FLAGS_tile);
+    const auto options_of = [&](const Entry& e) {
+      RenderOptions o = topt;
+      o.packets = e.packets;
+      o.skip_origin = e.skip_origin;
+      return o;
+    };
     // One render of entry e; kd-tree variants must reproduce the validated
     // image exactly (Embree may differ on grazing rays: its disagreements are
     // reported above).
     const auto render = [&](const Entry& e) -> absl::StatusOr<RenderResult> {
       std::optional<ScopedPacketKernelTarget> kernel;
       if (!e.kernel.empty()) kernel.emplace(e.kernel);  // checked in validation
-      RenderOptions o = topt;
-      o.packets = e.packets;
-      o.skip_origin = e.skip_origin;
       if (e.replay != nullptr) e.replay->Rewind();
-      RenderResult r = Render(*soup, *e.tracer, view, o);
+      RenderResult r = Render(*soup, *e.tracer, view, options_of(e));
       if (e.tracer != embree.get() && r.rgb != recorded.rgb) {
         return absl::InternalError(absl::StrCat(e.name, ": image differs"));
       }
@@ -309,11 +312,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     // The replays' answers: one render of kd in their mode, recorded.
     for (Entry& e : entries) {
       if (e.replay == nullptr) continue;
-      RenderOptions o = topt;
-      o.packets = e.packets;
-      o.skip_origin = e.skip_origin;
       e.replay->Record();
-      if (Render(*soup, *e.tracer, view, o).rgb != recorded.rgb) {
+      if (Render(*soup, *e.tracer, view, options_of(e)).rgb != recorded.rgb) {
         return absl::InternalError(absl::StrCat(e.name, ": recorded image differs"));
       }
     }

@@ -141,23 +141,15 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
           const auto clamp = FromBits(d, both);
           const V near_exit = hn::IfThenElse(clamp, hn::Add(tc, t_tol), t_exit);
           const V far_entry = hn::IfThenElse(clamp, hn::Sub(tc, t_tol), t_entry);
-          if (kFromEnd) {  // TraversalOptions::from_end: the far child first
-            hn::Store(t_entry, d, stack.t_entry[top]);
-            hn::Store(near_exit, d, stack.t_exit[top]);
-            stack.node[top] = near;
-            stack.lanes[top++] = need_near;
-            t_entry = far_entry;
-            index = far;
-            lanes = need_far;
-          } else {
-            hn::Store(far_entry, d, stack.t_entry[top]);
-            hn::Store(t_exit, d, stack.t_exit[top]);
-            stack.node[top] = far;
-            stack.lanes[top++] = need_far;
-            t_exit = near_exit;
-            index = near;
-            lanes = need_near;
-          }
+          // Push one child with its interval and lanes, go on to the other:
+          // the far one first with TraversalOptions::from_end, else the near.
+          hn::Store(kFromEnd ? t_entry : far_entry, d, stack.t_entry[top]);
+          hn::Store(kFromEnd ? near_exit : t_exit, d, stack.t_exit[top]);
+          stack.node[top] = kFromEnd ? near : far;
+          stack.lanes[top++] = kFromEnd ? need_near : need_far;
+          (kFromEnd ? t_entry : t_exit) = kFromEnd ? far_entry : near_exit;
+          index = kFromEnd ? far : near;
+          lanes = kFromEnd ? need_far : need_near;
         }
       }
       node = &nodes[index];
