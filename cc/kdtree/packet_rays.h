@@ -38,9 +38,6 @@ struct PacketRays {
   alignas(64) float shear_weight[kLanes];
   // The triangle each ray leaves from, never tested (kNoHit: none).
   alignas(64) uint32_t origin[kLanes];
-  // The rays as given; a live lane's as SanitizeRay leaves it (the same ray
-  // unless a direction component was flushed to zero: then its own set-up).
-  Ray ray[kLanes];
   uint8_t key[kLanes];  // direction signs and watertight axes (Group)
   uint32_t live = 0;    // bit i: ray i reaches the tree
   uint32_t behind = 0;  // bit i: ray i has tmin >= 0 (lane_test-inl.h RejectRays)
@@ -59,8 +56,8 @@ inline WatertightRay LaneRay(const PacketRays& p, int kx, int ky, int kz, int i)
   w.sx = p.sx[i];
   w.sy = p.sy[i];
   w.sz = p.sz[i];
-  w.origin = p.ray[i].origin;
-  w.dir = p.ray[i].dir;
+  w.origin = Vec3(p.org[0][i], p.org[1][i], p.org[2][i]);
+  w.dir = Vec3(p.dir[0][i], p.dir[1][i], p.dir[2][i]);
   return w;
 }
 
@@ -75,13 +72,15 @@ struct Group {
 
 inline constexpr uint32_t kAllLanes = (1u << kLanes) - 1;
 
-// SanitizeRay (ray_check.h) for kLanes rays, in vectors: their components,
-// sanitized, into the lanes of p (org, dir, tmin, tmax; lanes without a
-// valid ray or with a zero direction component get those of the first valid
-// ray without one, else of the first valid ray) and p->behind; returns the
-// lanes with a valid ray, and in *zero those with a zero direction component.
-// p->ray is not written. Chosen at run time like TraceGroup.
-uint32_t LoadLanes(const Ray* rays, PacketRays* p, uint32_t* zero);
+// SanitizeRay (ray_check.h) for rays[0, n), 1 <= n <= kLanes, in vectors:
+// their components, sanitized, into the lanes of p (org, dir, tmin, tmax;
+// lanes without a valid ray, lanes n and up included, or with a zero
+// direction component get those of the first valid ray without one, else of
+// the first valid ray) and p->behind; returns the lanes with a valid ray, and
+// in *zero those with a zero direction component. Reads each ray one float at
+// a time (gathers), as the renderer wrote it (ray.h LoadRay). Chosen at run
+// time like TraceGroup.
+uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero);
 
 // SetUpRay (ray_setup.h) for every lane from its ray's components (dir, org,
 // tmin, tmax; no direction component zero), with the same float operations:

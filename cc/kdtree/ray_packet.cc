@@ -3,7 +3,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
@@ -26,7 +25,6 @@ bool TreeSupportsPackets(const KdTree& tree, const TraversalOptions& options) {
 
 // The ray's components in lane i.
 void PutRay(const Ray& ray, int i, PacketRays* p) {
-  p->ray[i] = ray;
   for (int k = 0; k < 3; ++k) {
     p->org[k][i] = ray.origin[k];
     p->dir[k][i] = ray.dir[k];
@@ -65,15 +63,9 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
 void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
              PacketRays* p) {
   assert(n >= 0 && n <= kRayPacketSize);
-  // The n rays, then invalid ones (tmin > tmax).
-  std::memcpy(p->ray, rays, n * sizeof(Ray));
-  for (int i = n; i < kRayPacketSize; ++i) {
-    p->ray[i] = Ray{Vec3(0, 0, 0), Vec3(1, 1, 1)};
-    p->ray[i].tmin = 1.0f;
-    p->ray[i].tmax = 0.0f;
-  }
+  if (n == 0) return;
   uint32_t zero = 0;
-  const uint32_t valid = packet_internal::LoadLanes(p->ray, p, &zero);
+  const uint32_t valid = packet_internal::LoadLanes(rays, n, p, &zero);
   if (valid == 0) return;
   for (uint32_t m = valid; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
@@ -86,7 +78,7 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
   // signed), set up alone.
   for (uint32_t m = zero; m != 0; m &= m - 1) {
     const int i = __builtin_ctz(m);
-    Ray ray = p->ray[i];
+    Ray ray = rays[i];
     SanitizeRay(&ray);
     RaySetup s;
     if (!SetUpRayScalar(ray, tree.bounds, &s)) continue;
@@ -112,7 +104,8 @@ void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search 
     }
     rest &= ~g.lanes;
     for (int k = 0; k < 3; ++k) g.negative[k] = (key >> k) & 1;
-    WatertightAxes(p.ray[__builtin_ctz(g.lanes)].dir, &g.kx, &g.ky, &g.kz);
+    const int first = __builtin_ctz(g.lanes);
+    WatertightAxes(Vec3(p.dir[0][first], p.dir[1][first], p.dir[2][first]), &g.kx, &g.ky, &g.kz);
     packet_internal::TraceGroup(tree, p, g, search, best);
   }
 }

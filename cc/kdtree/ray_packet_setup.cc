@@ -15,7 +15,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
 #include "cc/geometry/ray.h"
@@ -106,20 +105,23 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   return Bits(d, hn::Le(lo, hi));
 }
 
-// SanitizeRay (ray_check.h) for the lanes [base, base + Lanes(d)) of
-// `rays` (kLanes rays, 8 floats each: origin, dir, tmin, tmax), in vectors:
-// stores their components into p, directions sanitized (a component below
-// the smallest normal float becomes a zero of its sign); returns the lanes
-// with a valid ray and sets *zero to those with a zero direction component
-// and *behind to those with tmin >= 0.
+// SanitizeRay (ray_check.h) for the lanes [base, base + Lanes(d)) of rays
+// [0, n) (8 floats each: origin, dir, tmin, tmax), in vectors: stores their
+// components into p, directions sanitized (a component below the smallest
+// normal float becomes a zero of its sign); returns the lanes with a valid
+// ray (none from n on: those lanes read ray 0 again) and
+// sets *zero to those with a zero direction component and *behind to those
+// with tmin >= 0.
 template <class D>
-HWY_INLINE uint32_t LoadChunk(D d, const float* rays, size_t base, PacketRays* p,
+HWY_INLINE uint32_t LoadChunk(D d, const float* rays, int n, size_t base, PacketRays* p,
                               uint32_t* zero, uint32_t* behind) {
   using V = hn::Vec<D>;
   const hn::RebindToSigned<D> di;
-  const auto index = hn::Mul(hn::Iota(di, static_cast<int32_t>(base)), hn::Set(di, 8));
+  const auto lane = hn::Iota(di, static_cast<int32_t>(base));
+  const auto in = hn::Lt(lane, hn::Set(di, n));
+  const auto index = hn::IfThenElseZero(in, hn::Mul(lane, hn::Set(di, 8)));
   const V tmin = hn::GatherIndex(d, rays + 6, index), tmax = hn::GatherIndex(d, rays + 7, index);
-  auto valid = hn::Le(tmin, tmax);  // also false for NaN
+  auto valid = hn::And(hn::Le(tmin, tmax), hn::RebindMask(d, in));  // also false for NaN
   auto nonzero = hn::Lt(tmin, hn::Zero(d));  // all false
   auto has_zero = nonzero;
   const V min_normal = hn::Set(d, std::numeric_limits<float>::min());
@@ -154,22 +156,21 @@ HWY_INLINE void CopyChunk(D d, size_t base, uint32_t plain, int c, PacketRays* p
   }
 }
 
-uint32_t LoadLanesImpl(const Ray* rays, PacketRays* p, uint32_t* zero) {
+uint32_t LoadLanesImpl(const Ray* rays, int n, PacketRays* p, uint32_t* zero) {
   static_assert(sizeof(Ray) == 8 * sizeof(float), "a ray is 8 floats");
-  float flat[kLanes * 8];
-  std::memcpy(flat, rays, sizeof(flat));
+  const float* flat = reinterpret_cast<const float*>(rays);
   const hn::ScalableTag<float> d;
-  const size_t n = hn::Lanes(d);
+  const size_t w = hn::Lanes(d);
   uint32_t valid = 0;
   *zero = 0;
   p->behind = 0;
-  for (size_t base = 0; base < kLanes; base += n) {
-    valid |= LoadChunk(d, flat, base, p, zero, &p->behind);
+  for (size_t base = 0; base < kLanes; base += w) {
+    valid |= LoadChunk(d, flat, n, base, p, zero, &p->behind);
   }
   const uint32_t plain = valid & ~*zero;
   if (valid != 0 && plain != kAllLanes) {
     const int c = __builtin_ctz(plain != 0 ? plain : valid);
-    for (size_t base = 0; base < kLanes; base += n) CopyChunk(d, base, plain, c, p);
+    for (size_t base = 0; base < kLanes; base += w) CopyChunk(d, base, plain, c, p);
   }
   return valid;
 }
@@ -194,8 +195,8 @@ namespace packet_internal {
 HWY_EXPORT(SetUpLanesImpl);
 HWY_EXPORT(LoadLanesImpl);
 
-uint32_t LoadLanes(const Ray* rays, PacketRays* p, uint32_t* zero) {
-  return HWY_DYNAMIC_DISPATCH(LoadLanesImpl)(rays, p, zero);
+uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero) {
+  return HWY_DYNAMIC_DISPATCH(LoadLanesImpl)(rays, n, p, zero);
 }
 
 uint32_t SetUpLanes(const AABB& box, PacketRays* p) {

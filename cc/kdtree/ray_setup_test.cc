@@ -135,7 +135,6 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
         }
         p.tmin[i] = ray.tmin;
         p.tmax[i] = ray.tmax;
-        p.ray[i] = ray;
       }
       if (!ok) continue;
       ++groups;
