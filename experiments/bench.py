@@ -21,7 +21,8 @@ single rays (target 0.8) and our best mode against Embree's best mode (target
 median and range over the rounds; by render time (T_R) and, where the
 records have render_bench's replays, by tracing time alone (each mode's T_R
 less the replay of its mode in the same round: the renderer's own work,
-shared by every tracer, taken out).
+shared by every tracer, taken out). A last table (packets_summary) says what
+the packet kernel did per packet: its steps and the lanes each carried.
 
 Numbers: T_B is the median of --repeats builds, and also the fastest, since
 on a shared or virtual machine the slow runs carry other load; Mtri/s =
@@ -365,6 +366,31 @@ def targets_summary(records):
     return "\n".join(out)
 
 
+def packets_summary(records):
+    """What the packet kernel did in one untimed render per packet variant
+    (render_bench's packet_counts; one row per scene, variant and query:
+    closest hit for the primary rays, any hit for the shadow rays): the
+    packets that reached the tree, per packet its steps (inner nodes, leaves,
+    vector triangle tests) and the lanes each carried, and per ray N_TR and
+    N_IT, which every lane reproduces from its single ray."""
+    out = ["| scene | variant | kernel | query | packets | inner steps / packet "
+           "| leaf steps / packet | triangle steps / packet | lanes per inner step "
+           "| lanes per triangle step | N_TR / ray | N_IT / ray |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    one_thread = [r for r in records if r.get("threads") == 1 and r.get("packet_counts")]
+    for r in sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"])):
+        for variant, c in r["packet_counts"].items():
+            for query in ("closest", "any"):
+                q = c[query]
+                p, lanes, ray = q["per_packet"], q["lanes_per_step"], q["per_ray"]
+                out.append("| %s | %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | "
+                           "%.1f |" % (r["scene"], variant, c["kernel"], query,
+                                       format(q["packets"], ","), p["inner_steps"],
+                                       p["leaf_steps"], p["triangle_steps"], lanes["inner"],
+                                       lanes["triangle"], ray["N_TR"], ray["N_IT"]))
+    return "\n".join(out)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repo", default=ROOT,
@@ -412,6 +438,7 @@ def main(argv=None):
         render_records = read(render_out)
         render = summarise(render_records, render_summary, render_out, *allow)
         targets = summarise(render_records, targets_summary, render_out, *allow)
+        packets = summarise(render_records, packets_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")
@@ -420,6 +447,8 @@ def main(argv=None):
     print(render)
     print("\n## Issue 23's targets (render_bench, one thread, paired per round)\n")
     print(targets)
+    print("\n## The packet kernel's work (render_bench's packet_counts, one render)\n")
+    print(packets)
 
 
 if __name__ == "__main__":

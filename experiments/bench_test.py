@@ -124,6 +124,23 @@ class BenchTest(unittest.TestCase):
         del r["tracers"]["embree"]
         self.assertIn("| s | 100,000 | sah-packet | - | - |", bench.targets_summary([r]))
 
+    def test_packets_summary_gives_steps_per_packet_and_lanes_per_step(self):
+        def counts(packets, rays):
+            return {"rays": rays, "packets": packets,
+                    "per_packet": {"inner_steps": 20.25, "leaf_steps": 5.0,
+                                   "triangle_steps": 23.0},
+                    "lanes_per_step": {"inner": 13.5, "leaf": 11.0, "triangle": 13.62},
+                    "per_ray": {"N_TR": 7.5, "N_IT": 8.53}}
+        r = {"scene": "s", "n_tri": 100000, "preset": "sah-packet", "threads": 1,
+             "provenance": provenance(),
+             "packet_counts": {"kd_packet_origin": {"kernel": "AVX3", "closest": counts(17166, 640000),
+                                                    "any": counts(8609, 134093)}}}
+        text = bench.packets_summary([r, dict(r, threads=2), dict(r, scene="t", packet_counts={})])
+        self.assertIn("| s | kd_packet_origin | AVX3 | closest | 17,166 | 20.2 | 5.0 | 23.0 | "
+                      "13.5 | 13.6 | 7.5 | 8.5 |", text)
+        self.assertIn("| s | kd_packet_origin | AVX3 | any | 8,609 |", text)
+        self.assertEqual(len(text.splitlines()), 4)  # one thread; no counts, no row
+
     def test_summary_states_the_provenance(self):
         text = bench.summarise([build_record(1, [1.0]), build_record(2, [0.5])],
                                bench.build_summary, "build.jsonl")

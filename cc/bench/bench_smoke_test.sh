@@ -100,9 +100,21 @@ for r in render:
     for k in ["bench", "scene", "n_tri", "preset", "threads", "tile", "repeats", "rays", "primary",
               "shadow", "ao", "leaf_layout_bytes", "tracers", "ratio_kd_over_embree",
               "ratio_kd_over_embree_packet", "ratio_trace_only", "embree_native_ray16",
-              "validation", "timing",
+              "packet_counts", "validation", "timing",
               "provenance"]:
         check(k in r, "render record has no " + k)
+    # The packet variant's counting render: primary rays (closest hit) and
+    # shadow rays (any hit), each lane counting as its single ray.
+    counts = r["packet_counts"]
+    check(list(counts) == ["kd_packet"], "render: packet counts of the packet variant only")
+    closest, any_hit = counts["kd_packet"]["closest"], counts["kd_packet"]["any"]
+    check(closest["rays"] == r["primary"] and any_hit["rays"] == r["shadow"] + r["ao"],
+          "render: packet counts of every primary and secondary ray")
+    check(0 < closest["packets"] <= -(-r["primary"] // 16), "render: packets reaching the tree")
+    check(closest["inner_steps"] <= closest["lane_inner_visits"] <= 16 * closest["inner_steps"],
+          "render: lanes per inner step")
+    check(abs(closest["per_ray"]["N_TR"] * closest["rays"] - closest["lane_inner_visits"]) < 1e-6,
+          "render: N_TR per ray")
     check(r["bench"] == "render" and r["scene"] == "tiny" and r["n_tri"] == 10, "render: scene")
     traced = ["kd", "kd_packet", "embree", "embree_packet"]
     replays = ["replay", "replay_packet"] if r["threads"] == 1 else []

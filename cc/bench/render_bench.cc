@@ -89,6 +89,7 @@
 #include "cc/base/provenance.h"
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
+#include "cc/bench/packet_counts.h"
 #include "cc/bench/render_check.h"
 #include "cc/bench/render_times.h"
 #include "cc/embree/embree_tracer.h"
@@ -247,6 +248,14 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     }
     variant_json[e.name] = bad;
   }
+  // What the packet kernel does (untimed): the kd-tree's packet variants.
+  Json packet_counts = Json::object();
+  for (const Entry& e : proto) {
+    if (!e.packets || e.tracer != &kd) continue;
+    absl::StatusOr<Json> counts = bench::CountPackets(*soup, *tree, view, ropt, e);
+    if (!counts.ok()) return counts.status();
+    packet_counts[e.name] = *std::move(counts);
+  }
   uint64_t checked = 0;
   const uint64_t bf_bad =
       bench::BruteForceMismatches(recorded.rays, bf, absl::GetFlag(FLAGS_check_rays), &checked);
@@ -369,7 +378,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"ratio_kd_over_embree", std::move(ratios)},
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},
                 {"ratio_trace_only", std::move(trace_only)},
-                {"embree_native_ray16", embree != nullptr && embree->native_ray16()}};
+                {"embree_native_ray16", embree != nullptr && embree->native_ray16()},
+                {"packet_counts", packet_counts}};
     rec["validation"] = {{"variants_vs_kd_mismatches", variant_json},
                          {"brute_force_checked", checked},
                          {"brute_force_mismatches", bf_bad},

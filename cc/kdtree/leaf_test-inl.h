@@ -20,6 +20,7 @@
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/mask_bits-inl.h"
 #include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/tree.h"
 #include "hwy/highway.h"
 
@@ -28,6 +29,12 @@ namespace kdtree {
 namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+
+// One more step of a vector of lanes: *steps + 1, *visits + the lanes.
+HWY_INLINE void CountStep(uint32_t lanes, uint64_t* steps, uint64_t* visits) {
+  ++*steps;
+  *visits += static_cast<uint64_t>(__builtin_popcount(lanes));
+}
 
 // Lane i's hit on triangle `tri` at t (u, v), if it is the closest so far
 // (any hit: the lane is done).
@@ -70,7 +77,7 @@ HWY_INLINE void ScalarTest(const PacketRays& p, const Group& g, const float* pac
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
                          const Group& g, size_t base, uint32_t first, uint32_t* lanes,
-                         uint32_t* found, float* best_t, Hit* best) {
+                         uint32_t* found, float* best_t, Hit* best, PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   const bool origins = p.has_origins;
   const uint32_t behind = p.behind >> base;
@@ -87,7 +94,10 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
       // Unconditional: a branch on rays != 0 first mispredicts often on
       // shadow rays, most of whose tests reject every ray (paired rounds on
       // 8 scenes: shadow pass 1-10 % faster without it and TestLeafFew's).
-      if (origins) rays &= ~Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l])));
+      const uint32_t own =
+          origins ? Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l]))) : 0;
+      rays &= ~own;
+      if (c != nullptr) CountStep(*lanes & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
       if (rays == 0) continue;
       LaneHits lh;
       FinishLanes(d, f, s, rays, best_t, &lh);
@@ -116,7 +126,7 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
                             const Group& g, size_t base, uint32_t first, uint32_t* lanes,
-                            uint32_t* found, float* best_t, Hit* best) {
+                            uint32_t* found, float* best_t, Hit* best, PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   const size_t n = hn::Lanes(d);
   // Block k holds ray ray[k]; blocks past the rays repeat the last one.
@@ -152,7 +162,9 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
     live &= ~Bits(du, hn::Eq(ids, hn::Set(du, kPadLane)));
     const LaneShear<D> s = ShearLanes(d, pf, RepeatTriangles(d, g, packet));
     uint32_t rays = live & ~RejectRays(d, pf, s, behind & live);
-    if (p.has_origins) rays &= ~Bits(du, hn::Eq(origin, ids));  // no branch on rays (TestLeaf)
+    const uint32_t own = p.has_origins ? Bits(du, hn::Eq(origin, ids)) : 0;
+    rays &= ~own;  // no branch on rays (TestLeaf)
+    if (c != nullptr) CountStep(live & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
     if (rays != 0) {
       hn::Store(hn::TableLookupLanes(hn::Load(d, best_t), perm), d, tmax);
       LaneHits lh;

@@ -12,6 +12,9 @@
 #include "cc/kdtree/tree.h"
 
 namespace kdtree {
+
+struct PacketCounters;  // ray_packet.h
+
 namespace packet_internal {
 
 inline constexpr int kLanes = 16;  // rays per packet (kRayPacketSize)
@@ -98,7 +101,9 @@ enum class Search { kClosest, kAny, kAnyFromEnd };
 // hit found; best[i].t must hold ray i's tmax on entry); best has kLanes
 // entries. Chosen at run time for the CPU (Highway's dynamic dispatch:
 // ray_packet_kernel.cc).
-void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search, Hit* best);
+// `counters` (may be null): what the traversal did (ray_packet.h).
+void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search, Hit* best,
+                PacketCounters* counters);
 
 // The Highway target TraceGroup runs on now ("AVX3", "AVX2", "SSE4", ...).
 const char* KernelTarget();

@@ -94,7 +94,7 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
 // Traces the live lanes, one group of lanes with the same direction signs and
 // watertight axes at a time.
 void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search search,
-               Hit* best) {
+               Hit* best, PacketCounters* counters) {
   for (uint32_t rest = p.live; rest != 0;) {
     const uint8_t key = p.key[__builtin_ctz(rest)];
     Group g;
@@ -106,7 +106,8 @@ void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search 
     for (int k = 0; k < 3; ++k) g.negative[k] = (key >> k) & 1;
     const int first = __builtin_ctz(g.lanes);
     WatertightAxes(Vec3(p.dir[0][first], p.dir[1][first], p.dir[2][first]), &g.kx, &g.ky, &g.kz);
-    packet_internal::TraceGroup(tree, p, g, search, best);
+    if (counters != nullptr) ++counters->groups;
+    packet_internal::TraceGroup(tree, p, g, search, best, counters);
   }
 }
 
@@ -115,16 +116,35 @@ void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search 
 // that does not reach the tree. The kernel reads and writes whole vectors of
 // lanes, hence a full packet.
 void TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
-                 packet_internal::Search search, Hit (&best)[kRayPacketSize]) {
+                 packet_internal::Search search, Hit (&best)[kRayPacketSize],
+                 PacketCounters* counters) {
   PacketRays p;
   Prepare(tree, rays, n, origins, &p);
   for (int i = 0; i < n; ++i) {
     if (p.live & (1u << i)) best[i].t = p.tmax[i];
   }
-  if (p.live != 0) TraceLive(tree, p, search, best);
+  if (counters != nullptr) {
+    counters->lanes.rays += static_cast<uint64_t>(n);
+    counters->packets += p.live != 0;
+  }
+  if (p.live != 0) TraceLive(tree, p, search, best, counters);
+}
+
+TraversalCounters* LaneCounters(PacketCounters* counters) {
+  return counters != nullptr ? &counters->lanes : nullptr;
 }
 
 }  // namespace
+
+void PacketCounters::Add(const PacketCounters& o) {
+  lanes.Add(o.lanes);
+  packets += o.packets;
+  groups += o.groups;
+  inner_steps += o.inner_steps;
+  leaf_steps += o.leaf_steps;
+  pushes += o.pushes;
+  triangle_steps += o.triangle_steps;
+}
 
 bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options) {
   return TreeSupportsPackets(tree, options);
@@ -133,15 +153,15 @@ bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options) {
 const char* PacketKernelTarget() { return packet_internal::KernelTarget(); }
 
 void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
-                     const TraversalOptions& options) {
+                     const TraversalOptions& options, PacketCounters* counters) {
   if (!TreeSupportsPackets(tree, options)) {
-    for (int i = 0; i < n; ++i) hits[i] = Intersect(tree, rays[i], options);
+    for (int i = 0; i < n; ++i) hits[i] = Intersect(tree, rays[i], options, LaneCounters(counters));
     return;
   }
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = options.origin_tri;
   Hit best[kRayPacketSize];
-  TracePacket(tree, rays, n, origins, packet_internal::Search::kClosest, best);
+  TracePacket(tree, rays, n, origins, packet_internal::Search::kClosest, best, counters);
   for (int i = 0; i < n; ++i) {
     hits[i] = best[i];
     if (!hits[i].hit()) hits[i].t = INFINITY;
@@ -149,13 +169,13 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
 }
 
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
-                    bool* occluded, const TraversalOptions& options) {
+                    bool* occluded, const TraversalOptions& options, PacketCounters* counters) {
   assert(origin_tris == nullptr || options.origin_tri == kNoHit);
   if (!TreeSupportsPackets(tree, options)) {
     TraversalOptions one = options;
     for (int i = 0; i < n; ++i) {
       if (origin_tris != nullptr) one.origin_tri = origin_tris[i];
-      occluded[i] = Occluded(tree, rays[i], one);
+      occluded[i] = Occluded(tree, rays[i], one, LaneCounters(counters));
     }
     return;
   }
@@ -167,7 +187,8 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
   }
   Hit hits[kRayPacketSize];
   using packet_internal::Search;
-  TracePacket(tree, rays, n, origins, options.from_end ? Search::kAnyFromEnd : Search::kAny, hits);
+  TracePacket(tree, rays, n, origins, options.from_end ? Search::kAnyFromEnd : Search::kAny, hits,
+              counters);
   for (int i = 0; i < n; ++i) occluded[i] = hits[i].hit();
 }
 

@@ -46,16 +46,38 @@ namespace kdtree {
 
 inline constexpr int kRayPacketSize = 16;
 
-// hits[i] = Intersect(tree, rays[i], options) for i < n, 0 <= n <= kRayPacketSize.
+// What the packet traversal did (the counting pass's packet statistics).
+// `lanes` counts per ray what TraversalCounters counts for a single ray, so
+// for the same rays and options its rays, inner and leaf visits equal the
+// single-ray traversal's, and for closest-hit queries its triangle tests too
+// (ray_packet_test checks this: each lane visits the nodes its ray's
+// traversal visits). The rest is the kernel's own work, a vector of lanes at
+// a time (its lanes per step: lanes.inner_visits / inner_steps, ...).
+struct PacketCounters {
+  TraversalCounters lanes;
+  uint64_t packets = 0;         // calls with at least one ray reaching the tree
+  uint64_t groups = 0;          // groups of lanes with the same signs and axes
+  uint64_t inner_steps = 0;     // inner nodes visited
+  uint64_t leaf_steps = 0;      // leaves reached, empty ones too
+  uint64_t pushes = 0;          // children put on the stack
+  uint64_t triangle_steps = 0;  // vector tests: a triangle against the lanes,
+                                // or a leaf packet against a few rays
+  void Add(const PacketCounters& o);
+};
+
+// hits[i] = Intersect(tree, rays[i], options) for i < n, 0 <= n <= kRayPacketSize;
+// `counters` (may be null) gathers what the traversal did.
 void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
-                     const TraversalOptions& options = TraversalOptions());
+                     const TraversalOptions& options = TraversalOptions(),
+                     PacketCounters* counters = nullptr);
 // occluded[i] = Occluded(tree, rays[i], options) for i < n, 0 <= n <= kRayPacketSize;
 // with origin_tris (else null), ray i's options.origin_tri is origin_tris[i]:
 // each ray leaves its origin triangle untested (TraversalOptions::origin_tri;
 // the renderer's shadow and AO rays, cc/geometry/spawn.h), and
 // options.origin_tri must be kNoHit.
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
-                    bool* occluded, const TraversalOptions& options = TraversalOptions());
+                    bool* occluded, const TraversalOptions& options = TraversalOptions(),
+                    PacketCounters* counters = nullptr);
 
 // Whether IntersectPacket / OccludedPacket take the packet path with this
 // tree and these options (else they trace the rays one by one).

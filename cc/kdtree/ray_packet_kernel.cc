@@ -76,9 +76,10 @@ struct Stack {
 // intervals and masks, which stay in registers only inside one function;
 // the single-ray Traverse in traversal.cc is one function for the same
 // reason.)
-template <bool kAnyHit, bool kFromEnd, class D>
+template <bool kAnyHit, bool kFromEnd, bool kCount, class D>
 HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const Group& g,
-                           size_t base, uint32_t lanes, Hit* best) {
+                           size_t base, uint32_t lanes, Hit* best, PacketCounters* counters) {
+  PacketCounters* const c = kCount ? counters : nullptr;  // counting compiled out without
   using V = hn::Vec<D>;
   V org[3], inv[3], tol[3];
   for (int k = 0; k < 3; ++k) {
@@ -98,6 +99,7 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
   for (;;) {
     const KdNode* node = &nodes[index];
     while (!node->is_leaf()) {
+      if (kCount) CountStep(lanes, &c->inner_steps, &c->lanes.inner_visits);
       const int axis = node->axis();
       const V ts = hn::Mul(hn::Sub(hn::Set(d, node->split), org[axis]), inv[axis]);
       const V t_tol = tol[axis];
@@ -147,6 +149,7 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
           hn::Store(kFromEnd ? near_exit : t_exit, d, stack.t_exit[top]);
           stack.node[top] = kFromEnd ? near : far;
           stack.lanes[top++] = kFromEnd ? need_near : need_far;
+          if (kCount) ++c->pushes;
           (kFromEnd ? t_entry : t_exit) = kFromEnd ? far_entry : near_exit;
           index = kFromEnd ? far : near;
           lanes = kFromEnd ? need_far : need_near;
@@ -154,6 +157,7 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
       }
       node = &nodes[index];
     }
+    if (kCount) CountStep(lanes, &c->leaf_steps, &c->lanes.leaf_visits);
     if (node->index() == kEmptyLeaf) {
     } else if (kFewRays &&
                __builtin_popcount(lanes) * kPacketLanes <= kFewSets * hn::Lanes(d)) {
@@ -168,12 +172,12 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
         }
         uint32_t set_lanes = set;
         TestLeafFew<kAnyHit>(d, tree, p, frames, g, base, node->index(), &set_lanes, &found,
-                             best_t, best);
+                             best_t, best, c);
         lanes = (lanes & ~set) | set_lanes;
       }
     } else {
       TestLeaf<kAnyHit>(d, tree, p, frames, g, base, node->index(), &lanes, &found, best_t,
-                        best);
+                        best, c);
     }
     // Next node: each lane drops it when it starts beyond that lane's best
     // hit plus slack (any hit: lanes with a hit are done).
@@ -195,8 +199,9 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
   }
 }
 
-void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
-                    Hit* best) {
+template <bool kCount>
+void TraceChunks(const KdTree& tree, const PacketRays& p, const Group& g, Search search, Hit* best,
+                 PacketCounters* counters) {
   const hn::ScalableTag<float> d;
   const size_t n = hn::Lanes(d);
   const uint32_t full = n >= 32 ? ~0u : (1u << n) - 1;
@@ -205,15 +210,24 @@ void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, Sea
     if (lanes == 0) continue;
     switch (search) {
       case Search::kClosest:
-        TraceChunk<false, false>(d, tree, p, g, base, lanes, best);
+        TraceChunk<false, false, kCount>(d, tree, p, g, base, lanes, best, counters);
         break;
       case Search::kAny:
-        TraceChunk<true, false>(d, tree, p, g, base, lanes, best);
+        TraceChunk<true, false, kCount>(d, tree, p, g, base, lanes, best, counters);
         break;
       case Search::kAnyFromEnd:
-        TraceChunk<true, true>(d, tree, p, g, base, lanes, best);
+        TraceChunk<true, true, kCount>(d, tree, p, g, base, lanes, best, counters);
         break;
     }
+  }
+}
+
+void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
+                    Hit* best, PacketCounters* counters) {
+  if (counters != nullptr) {
+    TraceChunks<true>(tree, p, g, search, best, counters);
+  } else {
+    TraceChunks<false>(tree, p, g, search, best, nullptr);
   }
 }
 
@@ -232,8 +246,8 @@ HWY_EXPORT(TraceGroupImpl);
 HWY_EXPORT(KernelTargetImpl);
 
 void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
-                Hit* best) {
-  HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, search, best);
+                Hit* best, PacketCounters* counters) {
+  HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, search, best, counters);
 }
 
 const char* KernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTargetImpl)(); }

@@ -10,6 +10,9 @@
 // origin triangles (OccludedPacket with origin_tris) against the single-ray traversal told
 // the same triangle, also when the "origin" is the triangle the ray hits. Any-hit
 // queries also from the rays' ends (TraversalOptions::from_end), packets and single rays.
+// And the counts (PacketCounters::lanes): every lane visits the inner nodes and
+// leaves of its ray's single-ray traversal, and for the closest hit tests its
+// triangles, on every kernel width.
 #include "cc/kdtree/ray_packet.h"
 
 #include <cmath>
@@ -230,6 +233,65 @@ TEST_P(PacketVsSingle, EveryKernelWidth) {
   std::string names;
   for (const std::string& n : ran) names += n + " ";
   std::printf("kernel targets checked: %s\n", names.c_str());
+}
+
+// The packet kernel's per-lane counts (PacketCounters::lanes) against the
+// single-ray traversal's counters on the same rays: each lane visits the
+// nodes and leaves its ray's traversal visits, and for the closest hit tests
+// the same triangles. Any hit: front to back, from the end, and leaving each
+// ray's closest-hit triangle untested.
+void ExpectSameCounts(const KdTree& tree, const PacketSet& s, const std::string& where) {
+  TraversalCounters single[4];
+  PacketCounters packet[4];
+  TraversalOptions from_end;
+  from_end.from_end = true;
+  for (size_t k = 0; k < s.sizes.size(); ++k) {
+    const Ray* rays = &s.rays[k * kRayPacketSize];
+    const int n = s.sizes[k];
+    Hit hits[kRayPacketSize];
+    bool occ[kRayPacketSize];
+    uint32_t origins[kRayPacketSize];
+    IntersectPacket(tree, rays, n, hits, TraversalOptions(), &packet[0]);
+    OccludedPacket(tree, rays, n, nullptr, occ, TraversalOptions(), &packet[1]);
+    OccludedPacket(tree, rays, n, nullptr, occ, from_end, &packet[2]);
+    for (int i = 0; i < n; ++i) origins[i] = hits[i].tri;
+    OccludedPacket(tree, rays, n, origins, occ, from_end, &packet[3]);
+    for (int i = 0; i < n; ++i) {
+      Intersect(tree, rays[i], TraversalOptions(), &single[0]);
+      Occluded(tree, rays[i], TraversalOptions(), &single[1]);
+      Occluded(tree, rays[i], from_end, &single[2]);
+      TraversalOptions own = from_end;
+      own.origin_tri = hits[i].tri;
+      Occluded(tree, rays[i], own, &single[3]);
+    }
+  }
+  const char* query[4] = {"closest", "any", "any from the end", "any without the hit"};
+  for (int q = 0; q < 4; ++q) {
+    const TraversalCounters& lanes = packet[q].lanes;
+    EXPECT_EQ(lanes.rays, single[q].rays) << where << query[q];
+    EXPECT_EQ(lanes.inner_visits, single[q].inner_visits) << where << query[q];
+    EXPECT_EQ(lanes.leaf_visits, single[q].leaf_visits) << where << query[q];
+    if (q == 0) {
+      EXPECT_EQ(lanes.triangle_tests, single[q].triangle_tests) << where << query[q];
+    }
+    // The kernel's steps: at least one lane each, at most a vector's worth.
+    EXPECT_LE(packet[q].inner_steps, lanes.inner_visits) << where << query[q];
+    EXPECT_LE(lanes.inner_visits, packet[q].inner_steps * kRayPacketSize) << where << query[q];
+  }
+  EXPECT_GT(single[0].inner_visits, 0u) << where;
+  EXPECT_GT(packet[0].triangle_steps, 0u) << where;
+}
+
+TEST_P(PacketVsSingle, EveryLaneVisitsItsRaysNodes) {
+  const std::string& preset = std::get<1>(GetParam());
+  const PacketSet s = MakePackets(soup_, 11);
+  ExpectSameCounts(tree_, s, PacketKernelTarget() + std::string(" "));
+  if (preset != "clipping-pruning" && preset != "sah-packet") return;
+  for (const std::string& target : PacketKernelTargets()) {
+    const ScopedPacketKernelTarget scoped(target);
+    ASSERT_TRUE(scoped.ok()) << target;
+    ExpectSameCounts(tree_, s, target + " ");
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -24,14 +24,14 @@ bool KdTreeTracer::Occluded(const Ray& ray, uint32_t origin_tri) const {
 }
 
 void KdTreeTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
-  ::kdtree::IntersectPacket(tree_, rays, n, hits, options_);
+  ::kdtree::IntersectPacket(tree_, rays, n, hits, options_, closest_);
 }
 
 void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                                   bool* occluded) const {
   TraversalOptions o = options_;
   o.from_end = o.from_end || origin_tris != nullptr;  // as Occluded's secondary rays
-  ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, o);
+  ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, o, any_);
 }
 
 }  // namespace kdtree

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 #include "cc/kdtree/tree.h"
 #include "cc/render/tracer.h"
@@ -27,10 +28,19 @@ class KdTreeTracer : public Tracer {
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override;
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override;
+  // From now on, what the packet traversal does goes into *closest
+  // (IntersectPacket) and *any (OccludedPacket); null: not counted. The
+  // counters are not shared safely between threads: render with one.
+  void CountPackets(PacketCounters* closest, PacketCounters* any) {
+    closest_ = closest;
+    any_ = any;
+  }
 
  private:
   const KdTree& tree_;
   TraversalOptions options_;
+  PacketCounters* closest_ = nullptr;
+  PacketCounters* any_ = nullptr;
 };
 
 // Every triangle tested (cc/kdtree/brute_force.h). `bf` must outlive it.

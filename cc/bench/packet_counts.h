@@ -1,0 +1,35 @@
+// What the packet kernel does in a render: render_bench's record
+// packet_counts, one untimed render per packet variant. Per query (closest
+// hit: primary rays; any hit: shadow and AO rays), the counters of
+// cc/kdtree/ray_packet.h and what they mean per packet: the kernel's steps
+// (inner nodes, leaves, vector triangle tests) and how many lanes each step
+// carries, and per ray the single-ray statistics (N_TR, N_IT), which each
+// lane reproduces.
+#ifndef KDTREE_CC_BENCH_PACKET_COUNTS_H_
+#define KDTREE_CC_BENCH_PACKET_COUNTS_H_
+
+#include "absl/status/statusor.h"
+#include "cc/bench/bench_record.h"
+#include "cc/bench/render_check.h"
+#include "cc/geometry/triangle.h"
+#include "cc/kdtree/ray_packet.h"
+#include "cc/kdtree/tree.h"
+#include "cc/render/renderer.h"
+#include "cc/render/view.h"
+
+namespace kdtree {
+namespace bench {
+
+// The counters and their per-packet and per-ray quotients.
+Json PacketCountsJson(const PacketCounters& c);
+
+// One render of `tree` with one thread and v's modes (v.packets must be set;
+// v.kernel: the packet kernel's target, as timed): {"kernel", "closest",
+// "any"}. Error: a kernel target this machine cannot run.
+absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
+                                  const RenderOptions& base, const RenderVariant& v);
+
+}  // namespace bench
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_BENCH_PACKET_COUNTS_H_
