@@ -41,7 +41,11 @@ struct PacketRays {
   alignas(64) float shear_weight[kLanes];
   // The triangle each ray leaves from, never tested (kNoHit: none).
   alignas(64) uint32_t origin[kLanes];
-  uint8_t key[kLanes];  // direction signs and watertight axes (Group)
+  // The lanes' keys, which lanes with the same one traverse together
+  // (Group), a bit per lane: in key_bits[k] for k < 3, the sign of the
+  // direction on axis k (1: negative); in key_bits[3] and key_bits[4],
+  // whether the watertight kz is 1 or 2.
+  uint32_t key_bits[5] = {0, 0, 0, 0, 0};
   uint32_t live = 0;    // bit i: ray i reaches the tree
   uint32_t behind = 0;  // bit i: ray i has tmin >= 0 (lane_test-inl.h RejectRays)
   bool has_origins = false;  // some lane has an origin triangle
@@ -62,6 +66,26 @@ inline WatertightRay LaneRay(const PacketRays& p, int kx, int ky, int kz, int i)
   w.origin = Vec3(p.org[0][i], p.org[1][i], p.org[2][i]);
   w.dir = Vec3(p.dir[0][i], p.dir[1][i], p.dir[2][i]);
   return w;
+}
+
+// Lane i's direction sign on axis k (true: negative) and watertight kz.
+inline bool LaneNegative(const PacketRays& p, int i, int k) { return (p.key_bits[k] >> i) & 1; }
+inline int LaneKz(const PacketRays& p, int i) {
+  return (p.key_bits[3] >> i) & 1 ? 1 : (p.key_bits[4] >> i) & 1 ? 2 : 0;
+}
+
+// Lane i's key from its direction signs and kz.
+inline void SetLaneKey(PacketRays* p, int i, const bool negative[3], int kz) {
+  const bool bit[5] = {negative[0], negative[1], negative[2], kz == 1, kz == 2};
+  for (int b = 0; b < 5; ++b) {
+    p->key_bits[b] = (p->key_bits[b] & ~(1u << i)) | static_cast<uint32_t>(bit[b]) << i;
+  }
+}
+
+// The lanes of `lanes` with lane i's key.
+inline uint32_t SameKey(const PacketRays& p, int i, uint32_t lanes) {
+  for (const uint32_t bits : p.key_bits) lanes &= (bits >> i) & 1 ? bits : ~bits;
+  return lanes;
 }
 
 // The lanes that traverse together: the same direction sign on every axis
@@ -87,7 +111,7 @@ uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero);
 
 // SetUpRay (ray_setup.h) for every lane from its ray's components (dir, org,
 // tmin, tmax; no direction component zero), with the same float operations:
-// fills the lanes' set-up and key; returns the lanes whose ray reaches the
+// fills the lanes' set-up and keys; returns the lanes whose ray reaches the
 // box. Vector code, chosen at run time like TraceGroup.
 uint32_t SetUpLanes(const AABB& box, PacketRays* p);
 

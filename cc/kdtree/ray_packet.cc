@@ -3,6 +3,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
@@ -52,8 +53,7 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
   p->sz[i] = w.sz;
   p->shear_weight[i] = watertight_internal::ShearWeight(w);
   // kx and ky follow from kz and the sign of dir[kz] (WatertightAxes).
-  p->key[i] = static_cast<uint8_t>(s.negative[0] | s.negative[1] << 1 | s.negative[2] << 2 |
-                                    w.kz << 3);
+  packet_internal::SetLaneKey(p, i, s.negative, w.kz);
 }
 
 // The set-up of each ray as the single-ray traversal does it (SanitizeRay,
@@ -67,11 +67,6 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
   uint32_t zero = 0;
   const uint32_t valid = packet_internal::LoadLanes(rays, n, p, &zero);
   if (valid == 0) return;
-  for (uint32_t m = valid; m != 0; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    p->origin[i] = origins[i];
-    p->has_origins = p->has_origins || origins[i] != kNoHit;
-  }
   const uint32_t plain = valid & ~zero;
   p->live = SetUpLanes(tree.bounds, p) & plain;
   // A ray with a zero direction component: SanitizeRay's ray (its zero
@@ -86,9 +81,16 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
     SetLane(s, i, p);
     p->live |= 1u << i;
   }
+  // Origin triangles of the live lanes (which are among the n rays).
+  uint32_t given[kRayPacketSize];
+  std::memcpy(given, origins, n * sizeof(uint32_t));
+  for (int i = n; i < kRayPacketSize; ++i) given[i] = kNoHit;
+  uint32_t any = 0;
   for (int i = 0; i < kRayPacketSize; ++i) {
-    if (!(p->live & (1u << i))) p->origin[i] = kNoHit;
+    p->origin[i] = (p->live >> i) & 1 ? given[i] : kNoHit;
+    any |= p->origin[i] ^ kNoHit;
   }
+  p->has_origins = any != 0;
 }
 
 // Traces the live lanes, one group of lanes with the same direction signs and
@@ -96,15 +98,11 @@ void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins
 void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search search,
                Hit* best, PacketCounters* counters) {
   for (uint32_t rest = p.live; rest != 0;) {
-    const uint8_t key = p.key[__builtin_ctz(rest)];
+    const int first = __builtin_ctz(rest);
     Group g;
-    for (uint32_t m = rest; m != 0; m &= m - 1) {
-      const int i = __builtin_ctz(m);
-      if (p.key[i] == key) g.lanes |= 1u << i;
-    }
+    g.lanes = packet_internal::SameKey(p, first, rest);
     rest &= ~g.lanes;
-    for (int k = 0; k < 3; ++k) g.negative[k] = (key >> k) & 1;
-    const int first = __builtin_ctz(g.lanes);
+    for (int k = 0; k < 3; ++k) g.negative[k] = packet_internal::LaneNegative(p, first, k);
     WatertightAxes(Vec3(p.dir[0][first], p.dir[1][first], p.dir[2][first]), &g.kx, &g.ky, &g.kz);
     if (counters != nullptr) ++counters->groups;
     packet_internal::TraceGroup(tree, p, g, search, best, counters);

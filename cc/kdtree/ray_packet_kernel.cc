@@ -90,8 +90,9 @@ HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const G
   V t_entry = hn::Load(d, p.t_entry + base), t_exit = hn::Load(d, p.t_exit + base);
   const V slack = hn::Load(d, p.slack + base), inf = hn::Set(d, INFINITY);
   const Frames<D> frames(d, p, base);
+  // Each lane's best t so far: its ray's tmax, as best[i].t holds on entry.
   HWY_ALIGN float best_t[kLanes];
-  for (size_t i = 0; i < hn::Lanes(d); ++i) best_t[i] = best[base + i].t;
+  hn::Store(hn::Load(d, p.tmax + base), d, best_t);
   const KdNode* nodes = tree.leaf_nodes.data();
   Stack stack;
   int top = 0;

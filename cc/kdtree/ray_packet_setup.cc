@@ -90,18 +90,14 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   const V min_shear = hn::Set(d, watertight_internal::kEdgeBoundMinShear);
   hn::Store(hn::Add(hn::Max(hn::Abs(sx), min_shear), hn::Max(hn::Abs(sy), min_shear)), d,
             p->shear_weight + base);
-  // The key: sign bits of the direction and kz.
+  // The keys: sign bits of the direction, and kz (1 on_y, 2 neither).
   const hn::RebindToSigned<D> di;
   const auto zero_i = hn::Zero(di);
-  const uint32_t neg[3] = {Bits(di, hn::Lt(hn::BitCast(di, dir[0]), zero_i)),
-                           Bits(di, hn::Lt(hn::BitCast(di, dir[1]), zero_i)),
-                           Bits(di, hn::Lt(hn::BitCast(di, dir[2]), zero_i))};
-  const uint32_t x_bits = Bits(d, on_x), y_bits = Bits(d, on_y);
-  for (size_t i = 0; i < hn::Lanes(d); ++i) {
-    const int kz = (x_bits >> i) & 1 ? 0 : (y_bits >> i) & 1 ? 1 : 2;
-    p->key[base + i] = static_cast<uint8_t>(((neg[0] >> i) & 1) | ((neg[1] >> i) & 1) << 1 |
-                                            ((neg[2] >> i) & 1) << 2 | kz << 3);
+  for (int k = 0; k < 3; ++k) {
+    p->key_bits[k] |= Bits(di, hn::Lt(hn::BitCast(di, dir[k]), zero_i)) << base;
   }
+  p->key_bits[3] |= Bits(d, on_y) << base;
+  p->key_bits[4] |= Bits(d, hn::Not(hn::Or(on_x, on_y))) << base;
   return Bits(d, hn::Le(lo, hi));
 }
 
@@ -179,6 +175,7 @@ uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p) {
   const hn::ScalableTag<float> d;
   const size_t n = hn::Lanes(d);
   uint32_t live = 0;
+  for (uint32_t& bits : p->key_bits) bits = 0;
   for (size_t base = 0; base < kLanes; base += n) live |= SetUpChunk(d, box, base, p) << base;
   return live;
 }

@@ -102,7 +102,7 @@ TEST(RaySetup, SimdEqualsScalarBitForBit) {
 // The packet kernel's vector set-up (packet_internal::SetUpLanes, 16 lanes at
 // every kernel width the machine runs) against SetUpRay on each ray: the same
 // answer, and every field bit for bit where the ray reaches the box (the
-// watertight axes rebuilt from the lane's key).
+// watertight axes rebuilt from the lane's key bits).
 TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
   constexpr int kLanes = packet_internal::kLanes;
   std::mt19937 rng(20261202);
@@ -149,13 +149,13 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
           lane.org[k] = p.org[k][i];
           lane.inv[k] = p.inv[k][i];
           lane.tol[k] = p.tol[k][i];
-          lane.negative[k] = (p.key[i] >> k) & 1;
+          lane.negative[k] = packet_internal::LaneNegative(p, i, k);
         }
         lane.delta = p.delta[i];
         lane.t_entry = p.t_entry[i];
         lane.t_exit = p.t_exit[i];
         lane.slack = p.slack[i];
-        const int kz = p.key[i] >> 3;
+        const int kz = packet_internal::LaneKz(p, i);
         int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
         if (lane.negative[kz]) std::swap(kx, ky);
         lane.wray = packet_internal::LaneRay(p, kx, ky, kz, i);
