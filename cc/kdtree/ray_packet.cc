@@ -134,16 +134,6 @@ TraversalCounters* LaneCounters(PacketCounters* counters) {
 
 }  // namespace
 
-void PacketCounters::Add(const PacketCounters& o) {
-  lanes.Add(o.lanes);
-  packets += o.packets;
-  groups += o.groups;
-  inner_steps += o.inner_steps;
-  leaf_steps += o.leaf_steps;
-  pushes += o.pushes;
-  triangle_steps += o.triangle_steps;
-}
-
 bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options) {
   return TreeSupportsPackets(tree, options);
 }

@@ -62,7 +62,6 @@ struct PacketCounters {
   uint64_t pushes = 0;          // children put on the stack
   uint64_t triangle_steps = 0;  // vector tests: a triangle against the lanes,
                                 // or a leaf packet against a few rays
-  void Add(const PacketCounters& o);
 };
 
 // hits[i] = Intersect(tree, rays[i], options) for i < n, 0 <= n <= kRayPacketSize;

@@ -79,7 +79,7 @@ struct Stack {
 template <bool kAnyHit, bool kFromEnd, bool kCount, class D>
 HWY_INLINE void TraceChunk(D d, const KdTree& tree, const PacketRays& p, const Group& g,
                            size_t base, uint32_t lanes, Hit* best, PacketCounters* counters) {
-  PacketCounters* const c = kCount ? counters : nullptr;  // counting compiled out without
+  PacketCounters* const c = kCount ? counters : nullptr;  // null: no counting code
   using V = hn::Vec<D>;
   V org[3], inv[3], tol[3];
   for (int k = 0; k < 3; ++k) {
