@@ -13,7 +13,8 @@
 
 namespace kdtree {
 
-// Traces with the kd-tree's fast path (no counters). `tree` must outlive it.
+// Traces with the kd-tree's fast path (no counters but, when asked,
+// CountPackets's). `tree` must outlive it.
 class KdTreeTracer : public Tracer {
  public:
   explicit KdTreeTracer(const KdTree& tree) : tree_(tree) {}
