@@ -38,7 +38,8 @@ Json PacketCountsJson(const PacketCounters& c) {
        {{"inner", Quotient(l.inner_visits, c.inner_steps)},
         {"leaf", Quotient(l.leaf_visits, c.leaf_steps)},
         {"triangle", Quotient(l.triangle_tests, c.triangle_steps)}}},
-      {"per_ray", {{"N_TR", Quotient(l.inner_visits, l.rays)}, {"N_IT", Quotient(l.triangle_tests, l.rays)}}}};
+      {"per_ray",
+       {{"N_TR", Quotient(l.inner_visits, l.rays)}, {"N_IT", Quotient(l.triangle_tests, l.rays)}}}};
 }
 
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
