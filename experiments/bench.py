@@ -326,6 +326,12 @@ def per_round_ratio(tracers, theirs, ours, runs_of=t_r_runs):
     return statistics.median(r), min(r), max(r)
 
 
+def one_thread_by_size(records):
+    """The one-thread records, by triangle count, scene and preset."""
+    one_thread = [r for r in records if r.get("threads") == 1]
+    return sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"]))
+
+
 def targets_summary(records):
     """Issue 23's targets per scene (one thread): single/single and
     best/best, paired per round, by render time and, where the record has the
@@ -334,8 +340,7 @@ def targets_summary(records):
            "| best mode / Embree's best mode | tracing alone: single / single "
            "| tracing alone: best / best |", "|---|---|---|---|---|---|---|"]
     columns = [[], [], [], []]
-    one_thread = [r for r in records if r.get("threads") == 1]
-    for r in sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"])):
+    for r in one_thread_by_size(records):
         t = r["tracers"]
         ours = [n for n in t if n.startswith("kd")]
         single = [n for n in ours if n in SINGLE_MODES]
@@ -377,9 +382,8 @@ def packets_summary(records):
            "| leaf steps / packet | triangle steps / packet | lanes per inner step "
            "| lanes per triangle step | N_TR / ray | N_IT / ray |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    one_thread = [r for r in records if r.get("threads") == 1 and r.get("packet_counts")]
-    for r in sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"])):
-        for variant, c in r["packet_counts"].items():
+    for r in one_thread_by_size(records):
+        for variant, c in r.get("packet_counts", {}).items():
             for query in ("closest", "any"):
                 q = c[query]
                 p, lanes, ray = q["per_packet"], q["lanes_per_step"], q["per_ray"]

@@ -16,14 +16,24 @@ void ReplayTracer::Rewind() {
   overran_ = false;
 }
 
+Hit ReplayTracer::NextHit() const {
+  if (next_hit_ < hits_.size()) return hits_[next_hit_++];
+  overran_ = true;
+  return Hit();
+}
+
+bool ReplayTracer::NextOccluded() const {
+  if (next_occluded_ < occluded_.size()) return occluded_[next_occluded_++] != 0;
+  overran_ = true;
+  return false;
+}
+
 Hit ReplayTracer::Intersect(const Ray& ray) const {
   if (recording_) {
     hits_.push_back(inner_.Intersect(ray));
     return hits_.back();
   }
-  if (next_hit_ < hits_.size()) return hits_[next_hit_++];
-  overran_ = true;
-  return Hit();
+  return NextHit();
 }
 
 bool ReplayTracer::Occluded(const Ray& ray, uint32_t origin_tri) const {
@@ -31,9 +41,7 @@ bool ReplayTracer::Occluded(const Ray& ray, uint32_t origin_tri) const {
     occluded_.push_back(inner_.Occluded(ray, origin_tri));
     return occluded_.back() != 0;
   }
-  if (next_occluded_ < occluded_.size()) return occluded_[next_occluded_++] != 0;
-  overran_ = true;
-  return false;
+  return NextOccluded();
 }
 
 void ReplayTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
@@ -42,14 +50,7 @@ void ReplayTracer::IntersectPacket(const Ray* rays, int n, Hit* hits) const {
     hits_.insert(hits_.end(), hits, hits + n);
     return;
   }
-  for (int i = 0; i < n; ++i) {
-    if (next_hit_ < hits_.size()) {
-      hits[i] = hits_[next_hit_++];
-    } else {
-      hits[i] = Hit();
-      overran_ = true;
-    }
-  }
+  for (int i = 0; i < n; ++i) hits[i] = NextHit();
 }
 
 void ReplayTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
@@ -59,14 +60,7 @@ void ReplayTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin
     occluded_.insert(occluded_.end(), occluded, occluded + n);
     return;
   }
-  for (int i = 0; i < n; ++i) {
-    if (next_occluded_ < occluded_.size()) {
-      occluded[i] = occluded_[next_occluded_++] != 0;
-    } else {
-      occluded[i] = false;
-      overran_ = true;
-    }
-  }
+  for (int i = 0; i < n; ++i) occluded[i] = NextOccluded();
 }
 
 }  // namespace kdtree

@@ -46,6 +46,10 @@ class ReplayTracer : public Tracer {
                       bool* occluded) const override;
 
  private:
+  // The next recorded answer; past the recording, a miss and overran_.
+  Hit NextHit() const;
+  bool NextOccluded() const;
+
   const Tracer& inner_;
   bool recording_ = false;
   // Mutable: the Tracer queries are const. One thread only (above).
