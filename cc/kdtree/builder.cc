@@ -67,12 +67,8 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   // build, then lay out the leaves (leaf_layout.h).
   const auto build = [&] {
     const size_t n = soup.size();
-    tree.tris.resize(n);  // HugeBuffers: filled here, not zeroed first
-    tree.verts.resize(soup.v.size());
+    tree.verts.resize(soup.v.size());  // a HugeBuffer: filled here, not zeroed first
     ForChunks(n, threads > 1, [&](size_t, size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        tree.tris[i] = MakeTriAccel(soup.a(i), soup.b(i), soup.c(i));
-      }
       std::copy(soup.v.begin() + 3 * begin, soup.v.begin() + 3 * end, tree.verts.begin() + 3 * begin);
     });
     if (UsesIndexRefs(config)) {

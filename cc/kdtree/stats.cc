@@ -54,7 +54,7 @@ TreeStats ComputeStats(const KdTree& tree) {
                      8.0 * tree.num_triangles()) /
                     (1024.0 * 1024.0);
   s.tree_bytes = tree.nodes.size() * sizeof(KdNode) + tree.refs.size() * sizeof(uint32_t) +
-                 tree.tris.size() * sizeof(TriAccel) + tree.verts.size() * sizeof(Vec3) +
+                 tree.verts.size() * sizeof(Vec3) +
                  tree.leaf_soa.size() * sizeof(float) +
                  tree.leaf_nodes.size() * sizeof(KdNode);
   s.build_peak_bytes = tree.counters.peak_build_bytes;

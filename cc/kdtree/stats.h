@@ -34,7 +34,7 @@ struct TreeStats {
   // [8 (N_I + N_L) + 4 (N_TP + N_L - N_empty) + 8 N_tri] / 2^20.
   double mem_report_mb = 0;
   // Bytes of the traversable tree: nodes, leaf lists, per-triangle data
-  // (TriAccel and the vertices) and, when built, the leaf-order packets.
+  // (the vertices) and, when built, the leaf-order packets.
   uint64_t tree_bytes = 0;
   // Peak bytes of build references (clipped boxes included) during the build,
   // with the box array of an index build (build_ref.h).

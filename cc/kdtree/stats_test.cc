@@ -51,10 +51,10 @@ TEST(Stats, HandCountedTree) {
   EXPECT_NEAR(s.sah_cost, 1540.0 / 34.0, 1e-9);
   EXPECT_EQ(s.clipped, 0u);
   EXPECT_EQ(s.pruned, 0u);
-  // 5 nodes * 8 + refs (shared 0 + 3 lists of 2) * 4 + 3 triangles * 36
-  // (TriAccel) + 9 vertices * 12 + 3 leaves of one 4-wide packet (36 floats
-  // and 4 indices) * 4 bytes + the traversal's copy of the 5 nodes * 8.
-  EXPECT_EQ(s.tree_bytes, 5u * 8 + 7u * 4 + 3u * 36 + 9u * 12 + 3u * 40 * 4 + 5u * 8);
+  // 5 nodes * 8 + refs (shared 0 + 3 lists of 2) * 4 + 9 vertices * 12 + 3
+  // leaves of one 4-wide packet (36 floats and 4 indices) * 4 bytes + the
+  // traversal's copy of the 5 nodes * 8.
+  EXPECT_EQ(s.tree_bytes, 5u * 8 + 7u * 4 + 9u * 12 + 3u * 40 * 4 + 5u * 8);
   EXPECT_EQ(tree->nodes[0].axis(), 0);
   EXPECT_FLOAT_EQ(tree->nodes[0].split, 4.0f);
   EXPECT_EQ(tree->nodes[0].index(), 4u);  // right child after the 3-node left subtree

@@ -136,7 +136,6 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   if (kCount) ++counters->rays;
   Ray ray = LoadRay(input);  // not a wide copy (ray.h)
   if (!SanitizeRay(&ray) || tree.nodes.empty() || !tree.bounds.Valid()) return best;
-  assert(kMode != IntersectionMode::kWatertight || tree.verts.size() == 3 * tree.tris.size());
   // Reciprocal direction, tolerances, the padded root interval, the slack and
   // the watertight ray (ray_setup.h; see the robustness notes in traversal.h).
   RaySetup setup;
@@ -311,11 +310,12 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         if (kCount) ++counters->triangle_tests;
         float t, u, v;
         bool hit;
+        const Vec3* p = verts + 3 * static_cast<size_t>(tri);
         if (kMode == IntersectionMode::kWatertight) {
-          const Vec3* p = verts + 3 * static_cast<size_t>(tri);
           hit = IntersectTriangleWatertight(wray, p[0], p[1], p[2], ray.tmin, best.t, &t, &u, &v);
         } else {
-          hit = IntersectTriangle(ray, tree.tris[tri], ray.tmin, best.t, &t, &u, &v);
+          hit = IntersectTriangle(ray, MakeTriAccel(p[0], p[1], p[2]), ray.tmin, best.t, &t, &u,
+                                  &v);
         }
         if (hit && (kAnyHit || Closer(t, tri, best))) {
           best.tri = tri;
@@ -347,7 +347,7 @@ template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kFromEnd>
 Hit DispatchLayout(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
                    TraversalCounters* counters) {
   // The leaf-ordered layout is used when present and complete (watertight mode
-  // reads vertices; the fast mode reads TriAccel by index either way).
+  // only; the fast mode reads the vertices by index either way).
   const bool ordered = kMode == IntersectionMode::kWatertight && HasLeafLayout(tree);
   const uint32_t o = options.origin_tri;
   if (ordered) {

@@ -63,10 +63,11 @@ struct KdTree {
   AABB bounds;                  // root box: union of the triangles' tight boxes
   HugeBuffer<KdNode> nodes;      // nodes[0] is the root
   HugeBuffer<uint32_t> refs;     // count-prefixed leaf lists; refs[0] == 0
-  HugeBuffer<TriAccel> tris;     // per-triangle intersection data, by index
-  // The triangles' vertices, 3 per triangle (a, b, c as in the soup): the
-  // watertight test (cc/geometry/watertight.h) needs the exact shared vertices,
-  // which v0 + e1 of TriAccel does not reproduce.
+  // The triangles' vertices, 3 per triangle (a, b, c as in the soup), by
+  // index: the one copy of each triangle outside the leaf layout. The
+  // watertight test (cc/geometry/watertight.h) needs the exact shared
+  // vertices; the fast test's TriAccel (v0, e1 = b - a, e2 = c - a) is made
+  // from them at each test, the same floats a stored copy would hold.
   HugeBuffer<Vec3> verts;
   // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
   // vertices and indices in packets of 4 triangles (structure of arrays, 40
@@ -77,7 +78,7 @@ struct KdTree {
   BuildCounters counters;
   double build_seconds = 0;     // T_B: triangles in memory to traversable tree
 
-  size_t num_triangles() const { return tris.size(); }
+  size_t num_triangles() const { return verts.size() / 3; }
   const uint32_t* LeafBegin(const KdNode& leaf) const { return &refs[leaf.index() + 1]; }
   uint32_t LeafCount(const KdNode& leaf) const { return refs[leaf.index()]; }
 };
