@@ -297,7 +297,8 @@ def _cost_table(ctx, records):
               "Answers differing"]
     caption = ("What robustness costs: the same rays (the renderer's primary "
                "rays, then one shadow ray per hit and light) traced on the "
-               "same tree with the fast (M\\\"oller--Trumbore) and the "
+               "same tree, its leaf packets and its vector leaf step, with "
+               "the fast (M\\\"oller--Trumbore) and the "
                "watertight triangle test, one thread: a warm-up of each "
                "(not counted), then rounds in which both run, their order "
                "swapping every round, alone on the machine (timing lock). "

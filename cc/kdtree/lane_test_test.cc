@@ -9,7 +9,8 @@
 // every kernel width this machine runs. (Rays near a zero-area triangle have
 // undecided signs: decided edge functions cannot agree on it, as its exact
 // edge functions sum to zero; so the vector path's near-zero area check,
-// which mirrors Finish's, sends no lane of these to the scalar test.)
+// which mirrors Finish's, sends no lane of these to the scalar test.) The
+// fast test's lanes (lane_fast_test-inl.h) get the same cases.
 #include <cmath>
 #include <random>
 #include <string>
@@ -18,6 +19,7 @@
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/config.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
@@ -155,6 +157,37 @@ TEST(LaneTest, EveryBranchOnEveryKernelWidth) {
       EXPECT_EQ(closest, 0u) << preset << " on " << target;
       EXPECT_EQ(any, 0u) << preset << " on " << target;
     }
+  }
+}
+
+// The fast test in vectors (lane_fast_test-inl.h) on the same hard cases:
+// rays exactly through shared vertices and edges (u, v at 0 or u + v at 1,
+// inclusive), ties, zero-area triangles, rays leaving the surface. On the
+// leaf packets it must answer as the scalar test by index does, bit for bit.
+TEST(LaneTest, FastTestOnThePacketsEqualsItByIndex) {
+  const TriangleSoup soup = Grid(14);
+  const std::vector<Ray> rays = Rays(soup, 7);
+  const TraversalOptions fast = WithTest(IntersectionMode::kFast);
+  TraversalOptions fast_end = fast;
+  fast_end.from_end = true;
+  for (const std::string& preset : {"sah-packet", "clipping-pruning"}) {
+    absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset(preset));
+    ASSERT_TRUE(tree.ok()) << tree.status();
+    ASSERT_TRUE(HasLeafLayout(*tree));
+    KdTree plain = *tree;
+    plain.leaf_soa.clear();
+    plain.leaf_nodes.clear();
+    size_t closest = 0, any = 0, hits = 0;
+    for (const Ray& ray : rays) {
+      const Hit want = Intersect(plain, ray, fast);
+      closest += !BitwiseSameHit(Intersect(*tree, ray, fast), want);
+      any += Occluded(*tree, ray, fast) != want.hit();
+      any += Occluded(*tree, ray, fast_end) != want.hit();
+      hits += want.hit();
+    }
+    EXPECT_EQ(closest, 0u) << preset;
+    EXPECT_EQ(any, 0u) << preset;
+    EXPECT_GT(hits, rays.size() / 3) << preset;
   }
 }
 

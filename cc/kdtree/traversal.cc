@@ -15,6 +15,7 @@
 #include "hwy/highway.h"
 // For the static target (this file is not dispatched at run time; with
 // -march=native it is the machine's).
+#include "cc/kdtree/lane_fast_test-inl.h"
 #include "cc/kdtree/lane_test-inl.h"
 
 namespace kdtree {
@@ -156,10 +157,13 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   const DL dl;
   const DU du;
   const lane::Frames<DL> frames(dl, wray, ray.tmin);
-  packet_internal::Group axes;
-  axes.kx = wray.kx;
-  axes.ky = wray.ky;
-  axes.kz = wray.kz;
+  packet_internal::Group axes;  // the fast test's: x, y, z
+  if (kMode == IntersectionMode::kWatertight) {
+    axes.kx = wray.kx;
+    axes.ky = wray.ky;
+    axes.kz = wray.kz;
+  }
+  const lane::RayLanes<DL> ray_lanes(dl, ray);
   // The origin triangle (TraversalOptions::origin_tri), watertight only
   // (kNoHit matches no lane: the ids are stored without kLastPacket's bit).
   if (kMode != IntersectionMode::kWatertight) origin_tri = kNoHit;
@@ -253,44 +257,53 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         // The packet kernel's per-lane test (lane_test-inl.h) with the
         // packets' triangles in the lanes: the rejection, then the rest of
         // the test in vectors for the lanes with decided signs (bit for bit
-        // the scalar test's t, u, v), the scalar test for the others. All
-        // lanes are tested against the same best.t; Closer then drops a hit
-        // beyond one an earlier lane found, as the scalar test with that
-        // lane's t as tmax would have.
-        const lane::LaneShear<DL> s =
-            lane::ShearLanes(dl, frames, StepTriangles(dl, axes, packet, second));
-        live &= ~static_cast<int>(lane::RejectRays(dl, frames, s, behind ? kStepLanes : 0u));
-        // Fast path: the rejection costs the same with or without a lane, so
-        // only the rest of the test is mailboxed.
-        if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
-        if (live != 0) {
-          HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
-          for (float& t : tmax) t = best.t;
-          lane::LaneHits lh;
-          lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
-          for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
-            const int l = __builtin_ctz(m);
-            float t, u, v;
-            bool hit;
-            if ((lh.hit >> l) & 1) {
-              t = lh.t[l];
-              u = lh.u[l];
-              v = lh.v[l];
-              hit = true;
-            } else {
-              Vec3 a, b, c;
-              PacketTriangle(l < kPacketLanes ? packet : second, l % kPacketLanes, &a, &b, &c);
-              hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
-            }
-            // Any hit: best holds no hit yet (the first one returns), and a
-            // hit with t <= best.t = tmax is always Closer.
-            if (hit && (kAnyHit || Closer(t, id[l], best))) {
-              best.tri = id[l];
-              best.t = t;
-              best.u = u;
-              best.v = v;
-              if (kAnyHit) return best;
-            }
+        // the scalar test's t, u, v), the scalar test for the others; or the
+        // fast test in vectors (lane_fast_test-inl.h). All lanes are tested
+        // against the same best.t; Closer then drops a hit beyond one an
+        // earlier lane found, as the scalar test with that lane's t as tmax
+        // would have.
+        const lane::LaneTriangle<DL> step = StepTriangles(dl, axes, packet, second);
+        lane::LaneHits lh;
+        if (kMode == IntersectionMode::kWatertight) {
+          const lane::LaneShear<DL> s = lane::ShearLanes(dl, frames, step);
+          live &= ~static_cast<int>(lane::RejectRays(dl, frames, s, behind ? kStepLanes : 0u));
+          // Fast path: the rejection costs the same with or without a lane,
+          // so only the rest of the test is mailboxed.
+          if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
+          if (live != 0) {
+            HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
+            for (float& t : tmax) t = best.t;
+            lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
+          }
+        } else {
+          if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
+          if (live != 0) {
+            lane::FastLanes(dl, ray_lanes, step, ray.tmin, best.t, static_cast<uint32_t>(live),
+                            &lh);
+          }
+        }
+        for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
+          const int l = __builtin_ctz(m);
+          float t, u, v;
+          bool hit;
+          if ((lh.hit >> l) & 1) {
+            t = lh.t[l];
+            u = lh.u[l];
+            v = lh.v[l];
+            hit = true;
+          } else {
+            Vec3 a, b, c;
+            PacketTriangle(l < kPacketLanes ? packet : second, l % kPacketLanes, &a, &b, &c);
+            hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
+          }
+          // Any hit: best holds no hit yet (the first one returns), and a
+          // hit with t <= best.t = tmax is always Closer.
+          if (hit && (kAnyHit || Closer(t, id[l], best))) {
+            best.tri = id[l];
+            best.t = t;
+            best.u = u;
+            best.v = v;
+            if (kAnyHit) return best;
           }
         }
         packet = last ? nullptr : second + kPacketFloats;
@@ -346,9 +359,8 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
 template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kFromEnd>
 Hit DispatchLayout(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
                    TraversalCounters* counters) {
-  // The leaf-ordered layout is used when present and complete (watertight mode
-  // only; the fast mode reads the vertices by index either way).
-  const bool ordered = kMode == IntersectionMode::kWatertight && HasLeafLayout(tree);
+  // The leaf-ordered layout is used when present and complete, by both tests.
+  const bool ordered = HasLeafLayout(tree);
   const uint32_t o = options.origin_tri;
   if (ordered) {
     return options.mailbox

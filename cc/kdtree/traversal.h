@@ -43,7 +43,9 @@
 //    components, a zero direction or a NaN interval make a miss.
 //
 // Intersection mode (cc/geometry/intersection_mode.h): kWatertight (Woop et
-// al. 2013, the default) or kFast (Moeller-Trumbore); the traversal is the same.
+// al. 2013, the default) or kFast (Moeller-Trumbore); the traversal, the leaf
+// layout and the leaf step are the same, so timing one mode against the other
+// times the two tests (cc/robust/robust_cost_bench.cc).
 //
 // Per-ray counters (N_IT: triangle tests, N_TR: inner nodes visited) and the
 // mode are template parameters, so the fast path carries no counting code.
@@ -62,7 +64,9 @@
 //    triangle; with the packets it also drops triangles whose three vertices
 //    lie behind the origin (tmin >= 0), and the rest of the test runs in
 //    vectors too, the scalar test only for lanes within rounding of an edge
-//    or of tmin (lane_test-inl.h, the packet kernel's code).
+//    or of tmin (lane_test-inl.h, the packet kernel's code). The fast test
+//    runs on the same packets, 8 or 4 triangles at once, bit for bit
+//    IntersectTriangle (lane_fast_test-inl.h).
 //  - Optional mailboxing (TraversalOptions::mailbox; Amanatides & Woo, "A fast
 //    voxel traversal algorithm for ray tracing", Eurographics 1987; Havran's
 //    thesis, 2000, section 5.5): a triangle that clipping put in several leaves

@@ -80,6 +80,47 @@ TEST_P(Options, EveryCombinationEqualsBruteForce) {
   if (config->use_clipping) EXPECT_LT(tests_mailbox, tests_plain);
 }
 
+// The fast test reads the same leaf packets (lane_fast_test-inl.h) and must
+// answer as it does by index, bit for bit: closest hit (triangle, t, u, v)
+// and any hit from either end, with and without the mailbox. (Against brute
+// force the fast test is checked in traversal_test, within its rounding.)
+TEST_P(Options, FastTestOnThePacketsEqualsItByIndex) {
+  const auto& [scene, preset] = GetParam();
+  const TriangleSoup soup = SceneByName(scene);
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset(preset));
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  ASSERT_TRUE(HasLeafLayout(*tree));
+  KdTree plain = *tree;
+  plain.leaf_soa.clear();
+  plain.leaf_nodes.clear();
+  std::vector<Ray> rays = testing::RandomRays(soup, 4000, 29);
+  const std::vector<Ray> cam = testing::CameraRays(soup, 64, 64);
+  rays.insert(rays.end(), cam.begin(), cam.end());
+  int hits = 0, mismatches = 0;
+  for (bool mailbox : {false, true}) {
+    TraversalOptions opt = WithTest(IntersectionMode::kFast);
+    opt.mailbox = mailbox;
+    TraversalOptions end = opt;
+    end.from_end = true;
+    TraversalCounters packed_counters, plain_counters;
+    for (const Ray& ray : rays) {
+      const Hit want = Intersect(plain, ray, opt, &plain_counters);
+      const Hit got = Intersect(*tree, ray, opt, &packed_counters);
+      hits += want.hit();
+      const Hit fast_path = Intersect(*tree, ray, opt);  // not counting
+      if (std::memcmp(&got, &want, sizeof(Hit)) != 0) ++mismatches;
+      if (std::memcmp(&fast_path, &want, sizeof(Hit)) != 0) ++mismatches;
+      if (Occluded(*tree, ray, opt) != want.hit()) ++mismatches;
+      if (Occluded(*tree, ray, end) != want.hit()) ++mismatches;
+    }
+    // The same nodes and the same triangle tests.
+    EXPECT_EQ(packed_counters.inner_visits, plain_counters.inner_visits);
+    EXPECT_EQ(packed_counters.triangle_tests, plain_counters.triangle_tests);
+  }
+  EXPECT_EQ(mismatches, 0) << scene << " " << preset;
+  EXPECT_GT(hits, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(All, Options,
                          ::testing::Combine(::testing::Values("sphere", "voxels", "thin"),
                                             ::testing::Values("median-24-8", "binning-8",

@@ -1,8 +1,10 @@
 // What robustness costs in render time: the same rays traced by each preset
 // with the fast (Moeller & Trumbore 1997) and the watertight (Woop, Benthin &
 // Wald, JCGT 2(1), 2013) triangle test, on the same kd-tree and the same
-// robust traversal (cc/kdtree/traversal.h). The issue "Hard cases stay
-// numerically stable" asks for this number next to the adversarial suite.
+// robust traversal (cc/kdtree/traversal.h), both reading the same leaf
+// packets a vector step at a time, so the two tests are all that differ.
+// The issue "Hard cases stay numerically stable" asks for this number next
+// to the adversarial suite.
 //
 //   bazel build -c opt //cc/robust:robust_cost_bench
 //   bazel-out/k8-opt/bin/cc/robust/robust_cost_bench --scene bunny --out FILE
