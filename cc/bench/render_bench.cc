@@ -179,8 +179,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
   absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
   if (!tree.ok()) return tree.status();
   KdTree index_tree = *tree;
-  kdtree::HugeBuffer<float>().swap(index_tree.leaf_soa);
-  kdtree::HugeBuffer<kdtree::KdNode>().swap(index_tree.leaf_nodes);
+  kdtree::DropLeafLayout(&index_tree);
   TraversalOptions mb;
   mb.mailbox = true;
   const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);

@@ -175,8 +175,7 @@ TEST(LaneTest, FastTestOnThePacketsEqualsItByIndex) {
     ASSERT_TRUE(tree.ok()) << tree.status();
     ASSERT_TRUE(HasLeafLayout(*tree));
     KdTree plain = *tree;
-    plain.leaf_soa.clear();
-    plain.leaf_nodes.clear();
+    DropLeafLayout(&plain);
     size_t closest = 0, any = 0, hits = 0;
     for (const Ray& ray : rays) {
       const Hit want = Intersect(plain, ray, fast);

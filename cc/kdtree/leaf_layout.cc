@@ -73,9 +73,13 @@ void ForChunks(size_t chunks, bool parallel, const Body& body) {
 
 }  // namespace
 
-void LayoutLeafTriangles(KdTree* tree, bool parallel) {
+void DropLeafLayout(KdTree* tree) {
   HugeBuffer<float>().swap(tree->leaf_soa);
   HugeBuffer<KdNode>().swap(tree->leaf_nodes);
+}
+
+void LayoutLeafTriangles(KdTree* tree, bool parallel) {
+  DropLeafLayout(tree);
   if (tree->verts.empty() || tree->nodes.empty()) return;
   // Packets per chunk of nodes, then each chunk's first packet (node order:
   // any packing of the refs lists, shared lists included, is covered).

@@ -50,6 +50,10 @@ inline constexpr uint32_t kEmptyLeaf = KdNode::kMaxIndex;  // leaf_nodes index
 // (in the caller's task arena); the layout is the same either way.
 void LayoutLeafTriangles(KdTree* tree, bool parallel = false);
 
+// Frees the layout: the traversal then reads the vertices by index (the
+// kd_index variant of render_bench, and tests comparing the two paths).
+void DropLeafLayout(KdTree* tree);
+
 // Whether `tree` has a complete layout (the traversal uses it then).
 inline bool HasLeafLayout(const KdTree& tree) {
   return !tree.leaf_nodes.empty() && tree.leaf_nodes.size() == tree.nodes.size();

@@ -28,6 +28,7 @@
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/config.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/packet_rays.h"
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
@@ -385,8 +386,7 @@ TEST(RayPacket, MixedSignsAndFallBacks) {
   EXPECT_FALSE(PacketPathApplies(*tree, mailbox));
   EXPECT_FALSE(PacketPathApplies(*tree, WithTest(IntersectionMode::kFast)));
   KdTree index_tree = *tree;
-  HugeBuffer<float>().swap(index_tree.leaf_soa);
-  HugeBuffer<KdNode>().swap(index_tree.leaf_nodes);
+  DropLeafLayout(&index_tree);
   EXPECT_FALSE(PacketPathApplies(index_tree));
   // From inside the sphere (so every ray reaches the tree): all 8 sign
   // patterns and all 3 dominant axes in one packet. Results are the

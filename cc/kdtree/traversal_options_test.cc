@@ -24,6 +24,14 @@ TriangleSoup SceneByName(const std::string& name) {
   return testing::ThinSoup(3000, 9);
 }
 
+// 4000 random rays (seeded) and a 64 x 64 camera's.
+std::vector<Ray> TestRays(const TriangleSoup& soup, uint32_t seed) {
+  std::vector<Ray> rays = testing::RandomRays(soup, 4000, seed);
+  const std::vector<Ray> cam = testing::CameraRays(soup, 64, 64);
+  rays.insert(rays.end(), cam.begin(), cam.end());
+  return rays;
+}
+
 class Options : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 TEST_P(Options, EveryCombinationEqualsBruteForce) {
@@ -35,13 +43,10 @@ TEST_P(Options, EveryCombinationEqualsBruteForce) {
   ASSERT_TRUE(tree.ok()) << tree.status();
   ASSERT_TRUE(HasLeafLayout(*tree));
   KdTree plain = *tree;  // the same tree without the layout: vertices by index
-  plain.leaf_soa.clear();
-  plain.leaf_nodes.clear();
+  DropLeafLayout(&plain);
   ASSERT_FALSE(HasLeafLayout(plain));
   const BruteForce bf(soup);
-  std::vector<Ray> rays = testing::RandomRays(soup, 4000, 23);
-  const std::vector<Ray> cam = testing::CameraRays(soup, 64, 64);
-  rays.insert(rays.end(), cam.begin(), cam.end());
+  const std::vector<Ray> rays = TestRays(soup, 23);
   int hits = 0;
   uint64_t tests_plain = 0, tests_mailbox = 0;
   for (const KdTree* t : {&*tree, &plain}) {
@@ -91,11 +96,8 @@ TEST_P(Options, FastTestOnThePacketsEqualsItByIndex) {
   ASSERT_TRUE(tree.ok()) << tree.status();
   ASSERT_TRUE(HasLeafLayout(*tree));
   KdTree plain = *tree;
-  plain.leaf_soa.clear();
-  plain.leaf_nodes.clear();
-  std::vector<Ray> rays = testing::RandomRays(soup, 4000, 29);
-  const std::vector<Ray> cam = testing::CameraRays(soup, 64, 64);
-  rays.insert(rays.end(), cam.begin(), cam.end());
+  DropLeafLayout(&plain);
+  const std::vector<Ray> rays = TestRays(soup, 29);
   int hits = 0, mismatches = 0;
   for (bool mailbox : {false, true}) {
     TraversalOptions opt = WithTest(IntersectionMode::kFast);
