@@ -21,7 +21,6 @@
 namespace kdtree {
 
 namespace {
-using ray_setup::kPad;
 namespace hn = hwy::HWY_NAMESPACE;
 namespace lane = packet_internal::HWY_NAMESPACE;
 static_assert(HWY_TARGET != HWY_SCALAR, "a leaf packet's four triangles in one vector");
@@ -71,35 +70,6 @@ HWY_INLINE hn::Vec<DU> StepIds(DU du, const float* p0, const float* p1) {
                        hn::LoadU(dh, i0));
   }
 }
-}  // namespace
-
-bool ClipRayToBox(const Ray& ray, const AABB& box, float* t0, float* t1) {
-  float lo = ray.tmin, hi = ray.tmax;
-  if (!(lo <= hi)) return false;
-  for (int k = 0; k < 3; ++k) {
-    const float o = ray.origin[k], d = ray.dir[k];
-    if (!(std::isfinite(o)) || std::isnan(d)) return false;
-    if (d == 0.0f) {
-      if (!(o >= box.lo[k] && o <= box.hi[k])) return false;
-      continue;
-    }
-    const float inv = 1.0f / d;
-    float tn = (box.lo[k] - o) * inv, tf = (box.hi[k] - o) * inv;
-    if (tn > tf) std::swap(tn, tf);
-    // Conservative padding (Ize 2013; pbrt's 1 + 2 gamma(3)): rounding of the
-    // slab distances may never cut off a hit on the box boundary.
-    tn -= std::fabs(tn) * kPad;
-    tf += std::fabs(tf) * kPad;
-    if (tn > lo) lo = tn;
-    if (tf < hi) hi = tf;
-    if (!(lo <= hi)) return false;
-  }
-  *t0 = lo;
-  *t1 = hi;
-  return true;
-}
-
-namespace {
 
 // The lanes of `live` whose triangle (id[l]) the mailbox has not seen; each
 // is entered, in lane order.

@@ -154,10 +154,6 @@ Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& option
 bool Occluded(const KdTree& tree, const Ray& ray, const TraversalOptions& options = TraversalOptions(),
               TraversalCounters* counters = nullptr);
 
-// The ray's interval [*t0, *t1] inside box, clipped to [ray.tmin, ray.tmax];
-// false when it misses. Handles zero direction components and NaN.
-bool ClipRayToBox(const Ray& ray, const AABB& box, float* t0, float* t1);
-
 }  // namespace kdtree
 
 #endif  // KDTREE_CC_KDTREE_TRAVERSAL_H_
