@@ -66,8 +66,9 @@ struct KdTree {
   // The triangles' vertices, 3 per triangle (a, b, c as in the soup), by
   // index: the one copy of each triangle outside the leaf layout. The
   // watertight test (cc/geometry/watertight.h) needs the exact shared
-  // vertices; the fast test's TriAccel (v0, e1 = b - a, e2 = c - a) is made
-  // from them at each test, the same floats a stored copy would hold.
+  // vertices; the fast test forms its edges (TriAccel: v0, e1 = b - a,
+  // e2 = c - a) at each test, from these or from the leaf packets, the same
+  // floats a stored copy would hold.
   HugeBuffer<Vec3> verts;
   // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
   // vertices and indices in packets of 4 triangles (structure of arrays, 40
