@@ -133,6 +133,9 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
   int ray[kLanes / kPacketLanes];
   int rays_in = 0;
   for (uint32_t m = *lanes; m != 0; m &= m - 1) ray[rays_in++] = __builtin_ctz(m);
+  // The kernel passes 1 to Lanes(d) / kPacketLanes rays (so ray[rays_in - 1]
+  // below is a ray; telling the compiler also ends its -Warray-bounds).
+  if (rays_in == 0) __builtin_unreachable();
   HWY_ALIGN int32_t index[kLanes];
   for (size_t j = 0; j < n; ++j) {
     const int k = static_cast<int>(j / kPacketLanes);
