@@ -110,8 +110,8 @@ TEST_P(Options, FastTestOnThePacketsEqualsItByIndex) {
       const Hit got = Intersect(*tree, ray, opt, &packed_counters);
       hits += want.hit();
       const Hit fast_path = Intersect(*tree, ray, opt);  // not counting
-      if (std::memcmp(&got, &want, sizeof(Hit)) != 0) ++mismatches;
-      if (std::memcmp(&fast_path, &want, sizeof(Hit)) != 0) ++mismatches;
+      if (!testing::BitwiseSameHit(got, want)) ++mismatches;
+      if (!testing::BitwiseSameHit(fast_path, want)) ++mismatches;
       if (Occluded(*tree, ray, opt) != want.hit()) ++mismatches;
       if (Occluded(*tree, ray, end) != want.hit()) ++mismatches;
     }
