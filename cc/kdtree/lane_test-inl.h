@@ -44,7 +44,7 @@ HWY_INLINE hn::Vec<D> MaxAbs3(const hn::Vec<D> v[3]) {
   return hn::Max(hn::Max(hn::Abs(v[0]), hn::Abs(v[1])), hn::Abs(v[2]));
 }
 
-// The lanes' watertight frames and tmin, loaded once per chunk of lanes.
+// The lanes' watertight frames and tmin, loaded once per vector of lanes.
 template <class D>
 struct Frames {
   hn::Vec<D> ox, oy, oz, sx, sy, sz, shear_weight, tmin;

@@ -17,7 +17,7 @@
 // wide (SSE4, AVX2, AVX-512; also SSSE3 and Highway's scalar emulation, which
 // the tests run too), chosen at run time for the CPU by Google Highway's
 // dynamic dispatch (ray_packet_kernel.cc); a group wider than a vector runs
-// as several vectors.
+// as several vectors that descend together, a node decided once for all.
 //
 // Exactness: every lane applies the single-ray traversal's rules
 // (traversal.h), with the same float operations, to the same intervals, in
@@ -51,8 +51,10 @@ inline constexpr int kRayPacketSize = 16;
 // for the same rays and options its rays, inner and leaf visits equal the
 // single-ray traversal's, and for closest-hit queries its triangle tests too
 // (ray_packet_test checks this: each lane visits the nodes its ray's
-// traversal visits). The rest is the kernel's own work, a vector of lanes at
-// a time (its lanes per step: lanes.inner_visits / inner_steps, ...).
+// traversal visits). The rest is the kernel's own work: a group's lanes
+// descend together, so an inner or leaf step is one node for all of them,
+// and a triangle step is one vector (its lanes per step:
+// lanes.inner_visits / inner_steps, ...).
 struct PacketCounters {
   TraversalCounters lanes;
   uint64_t packets = 0;         // calls with at least one ray reaching the tree

@@ -97,7 +97,7 @@ struct StackEntry {
 // interval, the stack, the mailbox and the best hit, a dozen values the loop
 // keeps in registers; as separate functions they would take them by
 // reference, which keeps them in memory unless every call is inlined. The
-// packet kernel's TraceChunk (ray_packet_kernel.cc) is one function for the
+// packet kernel's TraceLanes (ray_packet_kernel.cc) is one function for the
 // same reason.
 template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox,
           bool kFromEnd>
