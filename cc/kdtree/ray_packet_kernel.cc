@@ -110,11 +110,13 @@ HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
 // The group's lanes, kV vectors of Lanes(d) (all kLanes of them: one vector
 // on AVX-512, two on AVX2, four on SSE4), descending together: a node is
 // loaded and decided once for all of them, and the leaf tests run a vector at
-// a time. Against tracing each vector on its own (one descent per vector),
-// in one render_bench run (bunny, city, courtyard-1m, teapots, sah-packet,
-// 5 paired rounds, the AVX-512 kernel as the yardstick): the AVX2 kernel's
-// T_R went from 0.82-0.90 of the AVX-512 kernel's to 0.87-0.96, SSE4's from
-// 0.63-0.75 to 0.71-0.81. (Longer than the project's 80 lines: the descent,
+// a time. Against tracing each vector on its own (one descent per vector):
+// render_bench, sah-packet, 6 scenes (bunny, city, hairball-small, fforest,
+// courtyard-1m, teapots), 5 paired rounds, the AVX-512 kernel (one vector,
+// unchanged) as the yardstick, old and new binaries alternated twice: the
+// AVX2 kernel's T_R per scene went from 0.80-0.89 of the AVX-512 kernel's
+// (fforest once 1.00) to 0.84-0.91, SSE4's from 0.62-0.78 to 0.65-0.79:
+// 0-7 % faster, none slower beyond noise. (Longer than the project's 80 lines: the descent,
 // the leaf and the pop share the lanes' intervals and masks, which stay in
 // registers only inside one function; the single-ray Traverse in
 // traversal.cc is one function for the same reason.)
