@@ -92,12 +92,11 @@
 #include "cc/bench/packet_counts.h"
 #include "cc/bench/render_check.h"
 #include "cc/bench/render_times.h"
+#include "cc/bench/render_variants.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/brute_force.h"
-#include "cc/kdtree/builder.h"
 #include "cc/kdtree/config.h"
-#include "cc/kdtree/env_file.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/render/compare.h"
@@ -176,62 +175,21 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
   const View view = ref->has_view ? ref->view : AutoView(soup->Bounds());
   absl::StatusOr<Config> config = Preset(absl::GetFlag(FLAGS_preset));
   if (!config.ok()) return config.status();
-  absl::StatusOr<KdTree> tree = BuildKdTree(*soup, *config);
-  if (!tree.ok()) return tree.status();
-  KdTree index_tree = *tree;
-  kdtree::DropLeafLayout(&index_tree);
-  TraversalOptions mb;
-  mb.mailbox = true;
-  const KdTreeTracer kd(*tree), kd_index(index_tree), kd_mailbox(*tree, mb);
+  std::vector<std::string> envs;
+  for (absl::string_view path :
+       absl::StrSplit(absl::GetFlag(FLAGS_envs), ',', absl::SkipEmpty())) {
+    envs.push_back(FromInvocationDir(std::string(path)));
+  }
+  absl::StatusOr<std::unique_ptr<bench::SceneTrees>> trees =
+      bench::BuildSceneTrees(*soup, *config, envs);
+  if (!trees.ok()) return trees.status();
+  const KdTree* tree = &(*trees)->tree;
+  const KdTreeTracer& kd = *(*trees)->kd;
   const BruteForce bf(*soup);
-
-  // Extra trees: the preset with an environment file on top.
-  struct EnvTree {
-    std::string name;  // env:<file name>
-    std::unique_ptr<KdTree> tree;
-    std::unique_ptr<KdTreeTracer> tracer;
-  };
-  std::vector<EnvTree> env_trees;
-  for (const std::string& path : std::vector<std::string>(
-           absl::StrSplit(absl::GetFlag(FLAGS_envs), ',', absl::SkipEmpty()))) {
-    absl::StatusOr<EnvResult> env = LoadEnvironmentFile(FromInvocationDir(path), *config);
-    if (!env.ok()) return env.status();
-    absl::StatusOr<KdTree> t = BuildKdTree(*soup, env->config);
-    if (!t.ok()) return t.status();
-    EnvTree e;
-    e.name = absl::StrCat("env:", path.substr(path.find_last_of('/') + 1));  // npos + 1 == 0
-    e.tree = std::make_unique<KdTree>(*std::move(t));
-    e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
-    env_trees.push_back(std::move(e));
-  }
-
-  std::vector<std::string> variants = absl::StrSplit(absl::GetFlag(FLAGS_variants), ',');
-  std::vector<Entry> proto;
-  for (const std::string& name : variants) {
-    // NAME@TARGET: the variant with the packet kernel on that Highway target.
-    const std::string v = name.substr(0, name.find('@'));
-    if (v == "kd") {
-      proto.emplace_back(v, &kd);
-    } else if (v == "kd_index") {
-      proto.emplace_back(v, &kd_index);
-    } else if (v == "kd_mailbox") {
-      proto.emplace_back(v, &kd_mailbox);
-    } else if (v == "kd_packet") {
-      proto.emplace_back(v, &kd, true);
-    } else if (v == "kd_origin") {
-      proto.emplace_back(v, &kd, false, true);
-    } else if (v == "kd_packet_origin") {
-      proto.emplace_back(v, &kd, true, true);
-    } else {
-      return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
-    }
-    proto.back().name = name;
-    if (name.size() > v.size()) proto.back().kernel = name.substr(v.size() + 1);
-  }
-  const bool env_packets = absl::GetFlag(FLAGS_env_packets);
-  for (const EnvTree& e : env_trees) {
-    proto.emplace_back(e.name, e.tracer.get(), env_packets, env_packets);
-  }
+  absl::StatusOr<std::vector<Entry>> proto =
+      bench::VariantEntries(**trees, absl::StrSplit(absl::GetFlag(FLAGS_variants), ','),
+                            absl::GetFlag(FLAGS_env_packets));
+  if (!proto.ok()) return proto.status();
 
   // Validation (untimed).
   RenderOptions ropt;
@@ -240,7 +198,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
   rec_opt.record_rays = true;
   const RenderResult recorded = Render(*soup, kd, view, rec_opt);
   Json variant_json = Json::object();
-  for (const Entry& e : proto) {
+  for (const Entry& e : *proto) {
     uint64_t bad = 0;
     if (absl::Status st = bench::CheckVariant(scene, *soup, view, ropt, recorded, e, &bad); !st.ok()) {
       return st;
@@ -249,7 +207,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
   }
   // What the packet kernel does (untimed): the kd-tree's packet variants.
   Json packet_counts = Json::object();
-  for (const Entry& e : proto) {
+  for (const Entry& e : *proto) {
     if (!e.packets || e.tracer != &kd) continue;
     absl::StatusOr<Json> counts = bench::CountPackets(*soup, *tree, view, ropt, e);
     if (!counts.ok()) return counts.status();
@@ -267,7 +225,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     if (!absl::SimpleAtoi(ts, &threads) || threads < 1) return absl::InvalidArgumentError("--threads");
     std::unique_ptr<EmbreeTracer> embree;
     Json disagree = nullptr;
-    std::vector<Entry> entries = proto;
+    std::vector<Entry> entries = *proto;
     if (use_embree) {
       absl::StatusOr<EmbreeQuality> q = ParseEmbreeQuality(quality_flag);
       if (!q.ok()) return q.status();
@@ -281,7 +239,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       entries.emplace_back("embree", embree.get());
       if (absl::GetFlag(FLAGS_embree_packets)) entries.emplace_back("embree_packet", embree.get(), true);
     }
-    const size_t n_kd = proto.size();  // entries[0, n_kd) are kd-trees
+    const size_t n_kd = proto->size();  // entries[0, n_kd) are kd-trees
     const size_t n_traced = entries.size();  // then Embree's, then the replays
     std::vector<std::unique_ptr<ReplayTracer>> replays;
     if (absl::GetFlag(FLAGS_replay) && threads == 1) {

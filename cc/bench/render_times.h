@@ -21,7 +21,7 @@ namespace bench {
 // A variant and its times, one per round in round order.
 struct Entry : RenderVariant {
   Entry(std::string n, const Tracer* t, bool p = false, bool s = false)
-      : RenderVariant{std::move(n), t, p, s} {}
+      : RenderVariant{std::move(n), t, p, s, std::string()} {}
   std::vector<double> runs, primary, secondary;  // T_R; primary; shadow + AO
   std::vector<double> warmup;                    // untimed T_R before the rounds
   uint64_t rays = 0;

@@ -1,0 +1,73 @@
+#include "cc/bench/render_variants.h"
+
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/env_file.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/traversal.h"
+
+namespace kdtree {
+namespace bench {
+
+absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
+    const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths) {
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, config);
+  if (!tree.ok()) return tree.status();
+  auto trees = std::make_unique<SceneTrees>();
+  trees->tree = *std::move(tree);
+  trees->index_tree = trees->tree;
+  DropLeafLayout(&trees->index_tree);
+  TraversalOptions mailbox;
+  mailbox.mailbox = true;
+  trees->kd = std::make_unique<KdTreeTracer>(trees->tree);
+  trees->kd_index = std::make_unique<KdTreeTracer>(trees->index_tree);
+  trees->kd_mailbox = std::make_unique<KdTreeTracer>(trees->tree, mailbox);
+  for (const std::string& path : env_paths) {
+    absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, config);
+    if (!env.ok()) return env.status();
+    absl::StatusOr<KdTree> t = BuildKdTree(soup, env->config);
+    if (!t.ok()) return t.status();
+    SceneTrees::EnvTree e;
+    e.name = absl::StrCat("env:", path.substr(path.find_last_of('/') + 1));  // npos + 1 == 0
+    e.tree = std::make_unique<KdTree>(*std::move(t));
+    e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
+    trees->envs.push_back(std::move(e));
+  }
+  return trees;
+}
+
+absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
+                                                  const std::vector<std::string>& names,
+                                                  bool env_packets) {
+  std::vector<Entry> entries;
+  for (const std::string& name : names) {
+    // NAME@TARGET: the variant with the packet kernel on that Highway target.
+    const std::string v = name.substr(0, name.find('@'));
+    if (v == "kd") {
+      entries.emplace_back(v, trees.kd.get());
+    } else if (v == "kd_index") {
+      entries.emplace_back(v, trees.kd_index.get());
+    } else if (v == "kd_mailbox") {
+      entries.emplace_back(v, trees.kd_mailbox.get());
+    } else if (v == "kd_packet") {
+      entries.emplace_back(v, trees.kd.get(), true);
+    } else if (v == "kd_origin") {
+      entries.emplace_back(v, trees.kd.get(), false, true);
+    } else if (v == "kd_packet_origin") {
+      entries.emplace_back(v, trees.kd.get(), true, true);
+    } else {
+      return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
+    }
+    entries.back().name = name;
+    if (name.size() > v.size()) entries.back().kernel = name.substr(v.size() + 1);
+  }
+  for (const SceneTrees::EnvTree& e : trees.envs) {
+    entries.emplace_back(e.name, e.tracer.get(), env_packets, env_packets);
+  }
+  return entries;
+}
+
+}  // namespace bench
+}  // namespace kdtree

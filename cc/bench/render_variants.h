@@ -1,0 +1,50 @@
+// render_bench's kd-tree variants: the trees and tracers of one scene, and
+// the timed entries that --variants names.
+#ifndef KDTREE_CC_BENCH_RENDER_VARIANTS_H_
+#define KDTREE_CC_BENCH_RENDER_VARIANTS_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "cc/bench/render_times.h"
+#include "cc/geometry/triangle.h"
+#include "cc/kdtree/config.h"
+#include "cc/kdtree/tree.h"
+#include "cc/render/kdtree_tracer.h"
+
+namespace kdtree {
+namespace bench {
+
+// The preset's tree (with the leaf layout), a copy without the layout, and
+// one tree per environment file (the preset with the file on top), each with
+// its tracers. Not movable: the tracers point at the trees.
+struct SceneTrees {
+  struct EnvTree {
+    std::string name;  // env:<file name>
+    std::unique_ptr<KdTree> tree;
+    std::unique_ptr<KdTreeTracer> tracer;
+  };
+  KdTree tree, index_tree;
+  std::unique_ptr<KdTreeTracer> kd, kd_index, kd_mailbox;
+  std::vector<EnvTree> envs;
+};
+
+// Builds them for `soup`; `env_paths` are environment files (env_file.h).
+absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
+    const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths);
+
+// The entries `names` ask for ("kd", "kd_index", "kd_mailbox", "kd_packet",
+// "kd_origin", "kd_packet_origin", each optionally NAME@TARGET: the packet
+// kernel on that Highway target), then one per environment tree (with
+// `env_packets`, traced as kd_packet_origin, else as kd). Error: an unknown
+// name.
+absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
+                                                  const std::vector<std::string>& names,
+                                                  bool env_packets);
+
+}  // namespace bench
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_BENCH_RENDER_VARIANTS_H_
