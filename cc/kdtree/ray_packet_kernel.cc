@@ -85,22 +85,27 @@ HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
   uint32_t sub = (*lanes >> base) & kFull;
   if (sub == 0) return;
   uint32_t sub_found = (*found >> base) & kFull;
-  if (kFewRays && __builtin_popcount(sub) * kPacketLanes <= kFewSets * n) {
-    // Rays are independent: a few at a time, each set as many as fit.
-    const int per_set = n / kPacketLanes;
-    uint32_t rest = sub;
-    while (rest != 0) {
-      uint32_t set = 0;
-      for (int k = 0; k < per_set && rest != 0; ++k) {
-        set |= rest & -rest;
-        rest &= rest - 1;
+  bool few = false;
+  if constexpr (kFewRays) {
+    few = __builtin_popcount(sub) * kPacketLanes <= kFewSets * n;
+    if (few) {
+      // Rays are independent: a few at a time, each set as many as fit.
+      constexpr int kPerSet = n / kPacketLanes;
+      uint32_t rest = sub;
+      while (rest != 0) {
+        uint32_t set = 0;
+        for (int k = 0; k < kPerSet && rest != 0; ++k) {
+          set |= rest & -rest;
+          rest &= rest - 1;
+        }
+        uint32_t set_lanes = set;
+        TestLeafFew<kAnyHit>(d, tree, p, frames, g, base, leaf, &set_lanes, &sub_found,
+                             best_t + base, best, c);
+        sub = (sub & ~set) | set_lanes;
       }
-      uint32_t set_lanes = set;
-      TestLeafFew<kAnyHit>(d, tree, p, frames, g, base, leaf, &set_lanes, &sub_found,
-                           best_t + base, best, c);
-      sub = (sub & ~set) | set_lanes;
     }
-  } else {
+  }
+  if (!few) {
     TestLeaf<kAnyHit>(d, tree, p, frames, g, base, leaf, &sub, &sub_found, best_t + base, best, c);
   }
   *lanes = (*lanes & ~(kFull << base)) | (sub << base);
@@ -116,10 +121,10 @@ HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
 // unchanged) as the yardstick, old and new binaries alternated twice: the
 // AVX2 kernel's T_R per scene went from 0.80-0.89 of the AVX-512 kernel's
 // (fforest once 1.00) to 0.84-0.91, SSE4's from 0.62-0.78 to 0.65-0.79:
-// 0-7 % faster, none slower beyond noise. (Longer than the project's 80 lines: the descent,
-// the leaf and the pop share the lanes' intervals and masks, which stay in
-// registers only inside one function; the single-ray Traverse in
-// traversal.cc is one function for the same reason.)
+// 0-7 % faster, none slower beyond noise. (Longer than the project's 80
+// lines: the descent, the leaf and the pop share the lanes' intervals and
+// masks, which stay in registers only inside one function; the single-ray
+// Traverse in traversal.cc is one function for the same reason.)
 template <bool kAnyHit, bool kFromEnd, bool kCount, int kV, class D>
 HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const Group& g,
                            uint32_t lanes, Hit* best, PacketCounters* counters) {
