@@ -29,6 +29,12 @@ HWY_INLINE uint32_t Bits(D d, hn::Mask<D> m) {
   return bits;
 }
 
+// The bits of all of D's lanes.
+template <class D>
+constexpr uint32_t AllLanes() {
+  return hn::MaxLanes(D()) >= 32 ? ~0u : (1u << hn::MaxLanes(D())) - 1;
+}
+
 // Bits back to a mask.
 template <class D>
 HWY_INLINE hn::Mask<D> FromBits(D d, uint32_t bits) {

@@ -81,7 +81,7 @@ HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
                                uint32_t* lanes, uint32_t* found, float* best_t, Hit* best,
                                PacketCounters* c) {
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
-  constexpr uint32_t kFull = n >= 32 ? ~0u : (1u << n) - 1;
+  constexpr uint32_t kFull = AllLanes<D>();
   uint32_t sub = (*lanes >> base) & kFull;
   if (sub == 0) return;
   uint32_t sub_found = (*found >> base) & kFull;
@@ -132,7 +132,7 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
   using V = hn::Vec<D>;
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
   static_assert(kV * n == kLanes, "the group's lanes in kV vectors");
-  constexpr uint32_t kFull = n >= 32 ? ~0u : (1u << n) - 1;
+  constexpr uint32_t kFull = AllLanes<D>();
   // Vector v holds lanes [v * n, v * n + n).
   V org[kV][3], inv[kV][3], tol[kV][3], t_entry[kV], t_exit[kV], slack[kV];
   for (int v = 0; v < kV; ++v) {

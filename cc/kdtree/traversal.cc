@@ -233,24 +233,21 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         // earlier lane found, as the scalar test with that lane's t as tmax
         // would have.
         const lane::LaneTriangle<DL> step = StepTriangles(dl, axes, packet, second);
-        lane::LaneHits lh;
+        lane::LaneShear<DL> s;  // the watertight test's
         if (kMode == IntersectionMode::kWatertight) {
-          const lane::LaneShear<DL> s = lane::ShearLanes(dl, frames, step);
+          s = lane::ShearLanes(dl, frames, step);
           live &= ~static_cast<int>(lane::RejectRays(dl, frames, s, behind ? kStepLanes : 0u));
-          // Fast path: the rejection costs the same with or without a lane,
-          // so only the rest of the test is mailboxed.
-          if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
-          if (live != 0) {
-            HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
-            for (float& t : tmax) t = best.t;
-            lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
-          }
-        } else {
-          if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
-          if (live != 0) {
-            lane::FastLanes(dl, ray_lanes, step, ray.tmin, best.t, static_cast<uint32_t>(live),
-                            &lh);
-          }
+        }
+        // Fast path: the watertight rejection costs the same with or without
+        // a lane, so only the rest of the test is mailboxed.
+        if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
+        lane::LaneHits lh;
+        if (live != 0 && kMode == IntersectionMode::kWatertight) {
+          HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
+          for (float& t : tmax) t = best.t;
+          lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
+        } else if (live != 0) {
+          lane::FastLanes(dl, ray_lanes, step, ray.tmin, best.t, static_cast<uint32_t>(live), &lh);
         }
         for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
           const int l = __builtin_ctz(m);
