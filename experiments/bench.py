@@ -283,7 +283,10 @@ def render_summary(records):
 SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin")
 EMBREE_SINGLE = ("embree",)
 EMBREE_ALL = ("embree", "embree_packet")
-PACKET_MODES = ("kd_packet", "kd_packet_origin", "embree_packet")
+# The same Embree with RTC_SCENE_FLAG_ROBUST (render_bench --embree_robust).
+EMBREE_ROBUST_SINGLE = ("embree_robust",)
+EMBREE_ROBUST_ALL = ("embree_robust", "embree_robust_packet")
+PACKET_MODES = ("kd_packet", "kd_packet_origin", "embree_packet", "embree_robust_packet")
 # Issue 23's bars: single rays, best mode.
 SINGLE_TARGET, BEST_TARGET = 0.8, 1.0
 
@@ -332,22 +335,31 @@ def one_thread_by_size(records):
     return sorted(one_thread, key=lambda r: (r["n_tri"], r["scene"], r["preset"]))
 
 
-def targets_summary(records):
+def targets_summary(records, robust=False):
     """Issue 23's targets per scene (one thread): single/single and
     best/best, paired per round, by render time and, where the record has the
-    replays, by tracing time alone."""
+    replays, by tracing time alone. With `robust`, against Embree built with
+    RTC_SCENE_FLAG_ROBUST instead (rows without it are left out), with the
+    rays it answers wrongly (render_bench's validation: its answer differs
+    from ours and the exact check, compare.h, sides with ours)."""
+    embree_single = EMBREE_ROBUST_SINGLE if robust else EMBREE_SINGLE
+    embree_all = EMBREE_ROBUST_ALL if robust else EMBREE_ALL
     out = ["| scene | triangles | preset | single rays / Embree's single rays "
            "| best mode / Embree's best mode | tracing alone: single / single "
-           "| tracing alone: best / best |", "|---|---|---|---|---|---|---|"]
+           "| tracing alone: best / best |%s" % (" Embree wrong: primary, shadow |"
+                                                  if robust else ""),
+           "|---|---|---|---|---|---|---|%s" % ("---|" if robust else "")]
     columns = [[], [], [], []]
     for r in one_thread_by_size(records):
         t = r["tracers"]
+        if robust and embree_single[0] not in t:
+            continue
         ours = [n for n in t if n.startswith("kd")]
         single = [n for n in ours if n in SINGLE_MODES]
-        values = [per_round_ratio(t, EMBREE_SINGLE, single),
-                  per_round_ratio(t, EMBREE_ALL, ours),
-                  per_round_ratio(t, EMBREE_SINGLE, single, trace_runs),
-                  per_round_ratio(t, EMBREE_ALL, ours, trace_runs)]
+        values = [per_round_ratio(t, embree_single, single),
+                  per_round_ratio(t, embree_all, ours),
+                  per_round_ratio(t, embree_single, single, trace_runs),
+                  per_round_ratio(t, embree_all, ours, trace_runs)]
         cells = []
         for k, value in enumerate(values):
             if value is None:
@@ -356,6 +368,10 @@ def targets_summary(records):
             columns[k].append(value[0])
             bar = SINGLE_TARGET if k % 2 == 0 else BEST_TARGET
             cells.append("%.2f [%.2f..%.2f]%s" % (value + (" (met)" if value[0] >= bar else "",)))
+        if robust:
+            d = r.get("validation", {}).get("embree_robust_disagreements") or {}
+            cells.append("%s, %s" % tuple(format(d.get(k, {}).get("other_wrong", 0), ",")
+                                          for k in ("primary", "shadow")))
         out.append("| %s | %s | %s | %s |" % (r["scene"], format(r["n_tri"], ","), r["preset"],
                                               " | ".join(cells)))
     names = ("Single rays against Embree's single rays", "Best mode against Embree's best mode",
@@ -442,6 +458,8 @@ def main(argv=None):
         render_records = read(render_out)
         render = summarise(render_records, render_summary, render_out, *allow)
         targets = summarise(render_records, targets_summary, render_out, *allow)
+        robust = summarise(render_records, lambda r: targets_summary(r, robust=True),
+                           render_out, *allow)
         packets = summarise(render_records, packets_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
@@ -451,6 +469,8 @@ def main(argv=None):
     print(render)
     print("\n## Issue 23's targets (render_bench, one thread, paired per round)\n")
     print(targets)
+    print("\n## The same against Embree built with RTC_SCENE_FLAG_ROBUST (same rounds)\n")
+    print(robust)
     print("\n## The packet kernel's work (render_bench's packet_counts, one render)\n")
     print(packets)
 

@@ -124,6 +124,27 @@ class BenchTest(unittest.TestCase):
         del r["tracers"]["embree"]
         self.assertIn("| s | 100,000 | sah-packet | - | - |", bench.targets_summary([r]))
 
+    def test_targets_summary_against_embree_robust(self):
+        def runs(*t):
+            return {"T_R_runs": list(t)}
+        wrong = {"primary": {"other_wrong": 0}, "shadow": {"other_wrong": 1234}}
+        r = {"scene": "s", "n_tri": 100000, "preset": "sah-packet", "threads": 1,
+             "provenance": provenance(),
+             "validation": {"embree_robust_disagreements": wrong},
+             "tracers": {"kd_origin": runs(2.0, 2.0, 2.0), "kd_packet_origin": runs(1.0, 1.0, 1.0),
+                         "embree": runs(1.0, 1.0, 1.0), "embree_packet": runs(0.5, 0.5, 0.5),
+                         "embree_robust": runs(1.6, 1.8, 2.0),
+                         "embree_robust_packet": runs(1.1, 1.2, 1.0)}}
+        text = bench.targets_summary([r], robust=True)
+        # Against the robust tracers only: 1.6/2, 1.8/2, 2/2 and 1.1, 1.2, 1.0.
+        self.assertIn("| s | 100,000 | sah-packet | 0.90 [0.80..1.00] (met) | "
+                      "1.10 [1.00..1.20] (met) | - | - | 0, 1,234 |", text)
+        # The default table ignores them.
+        self.assertIn("| 0.50 [0.50..0.50] | 0.50 [0.50..0.50] |", bench.targets_summary([r]))
+        # A record without the robust tracers has no row.
+        del r["tracers"]["embree_robust"]
+        self.assertNotIn("| s |", bench.targets_summary([r], robust=True))
+
     def test_packets_summary_gives_steps_per_packet_and_lanes_per_step(self):
         def counts(packets, rays):
             return {"rays": rays, "packets": packets,

@@ -116,7 +116,8 @@ for r in render:
     check(abs(closest["per_ray"]["N_TR"] * closest["rays"] - closest["lane_inner_visits"]) < 1e-6,
           "render: N_TR per ray")
     check(r["bench"] == "render" and r["scene"] == "tiny" and r["n_tri"] == 10, "render: scene")
-    traced = ["kd", "kd_packet", "embree", "embree_packet"]
+    traced = ["kd", "kd_packet", "embree", "embree_packet", "embree_robust",
+              "embree_robust_packet"]
     replays = ["replay", "replay_packet"] if r["threads"] == 1 else []
     check(list(r["tracers"]) == traced + replays, "render: tracers (replays with one thread)")
     if replays:
@@ -127,7 +128,7 @@ for r in render:
             check(abs(t[name]["trace_s_median"] - sum(less) / 2) < 1e-12,
                   "render: %s's tracing time, its mode's replay subtracted per round" % name)
         check(set(r["ratio_trace_only"]) == {"kd", "kd_packet"} and
-              set(r["ratio_trace_only"]["kd"]) == {"embree", "embree_packet"},
+              set(r["ratio_trace_only"]["kd"]) == set(traced[2:]),
               "render: tracing-time ratios")
     else:
         check(r["ratio_trace_only"] == {}, "render: no replays with two threads")
@@ -144,6 +145,8 @@ for r in render:
     check(v["brute_force_mismatches"] == 0 and v["brute_force_checked"] > 0, "render: brute force")
     check(v["variants_vs_kd_mismatches"] == {"kd": 0, "kd_packet": 0}, "render: variants")
     check(isinstance(v["embree_disagreements"], dict), "render: Embree disagreements")
+    check(isinstance(v["embree_robust_disagreements"], dict),
+          "render: Embree's (RTC_SCENE_FLAG_ROBUST) disagreements")
     check(r["timing"]["rounds"] == 2 and r["timing"]["warmup"] == 1, "render: timing")
     check_provenance(r, "render")
 env = [json.loads(l) for l in open("env.jsonl")]

@@ -62,7 +62,10 @@
 // RenderOptions::skip_origin; validated on every recorded secondary ray),
 // "kd_packet_origin" (both: packets, and shadow rays as in kd_origin); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
-// ratios of every kd tracer to each. A variant NAME@TARGET runs the packet
+// ratios of every kd tracer to each; with --embree_robust (the default) also
+// as "embree_robust" and "embree_robust_packet", Embree's scene built with
+// RTC_SCENE_FLAG_ROBUST, timed in the same rounds (their ratios are in
+// ratio_trace_only and for the analysis to pair from the runs). A variant NAME@TARGET runs the packet
 // kernel on the given Highway target ("kd_packet_origin@AVX2": 8 lanes on an
 // AVX-512 machine), validated like the others, to compare kernel widths on
 // the same rays. --envs adds one
@@ -99,7 +102,6 @@
 #include "cc/kdtree/config.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/ray_packet.h"
-#include "cc/render/compare.h"
 #include "cc/render/framing.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
@@ -138,6 +140,10 @@ ABSL_FLAG(bool, env_packets, false,
 ABSL_FLAG(bool, embree_packets, true,
           "Also time Embree with packets of 4x4 pixels (rtcIntersect16 / rtcOccluded16) as "
           "tracer embree_packet, the bar for kd_packet.");
+ABSL_FLAG(bool, embree_robust, true,
+          "Also time Embree with RTC_SCENE_FLAG_ROBUST (embree_tracer.h), as embree_robust "
+          "(and embree_robust_packet with --embree_packets): the peer at the accuracy our "
+          "watertight test keeps; its disagreements with kd are recorded apart.");
 ABSL_FLAG(bool, replay, true,
           "With one thread, also time the renderer's own work per mode: renders whose tracer "
           "replays recorded answers (replay_tracer.h), as replay and replay_packet, and each "
@@ -223,8 +229,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
   for (absl::string_view ts : absl::StrSplit(absl::GetFlag(FLAGS_threads), ',')) {
     int threads = 0;
     if (!absl::SimpleAtoi(ts, &threads) || threads < 1) return absl::InvalidArgumentError("--threads");
-    std::unique_ptr<EmbreeTracer> embree;
-    Json disagree = nullptr;
+    std::vector<std::unique_ptr<EmbreeTracer>> embrees;  // default flags, then ROBUST
+    Json disagree = nullptr, disagree_robust = nullptr;
     std::vector<Entry> entries = *proto;
     if (use_embree) {
       absl::StatusOr<EmbreeQuality> q = ParseEmbreeQuality(quality_flag);
@@ -232,13 +238,20 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       EmbreeOptions eo;
       eo.quality = *q;
       eo.threads = threads;
-      absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, eo);
-      if (!e.ok()) return e.status();
-      embree = *std::move(e);
-      disagree = CompareTracers(recorded.rays, *soup, kd, *embree).ToJson();
-      entries.emplace_back("embree", embree.get());
-      if (absl::GetFlag(FLAGS_embree_packets)) entries.emplace_back("embree_packet", embree.get(), true);
+      for (const bool robust : {false, true}) {
+        if (robust && !absl::GetFlag(FLAGS_embree_robust)) break;
+        eo.robust = robust;
+        absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = bench::AddEmbree(
+            *soup, eo, robust ? "embree_robust" : "embree", absl::GetFlag(FLAGS_embree_packets),
+            recorded.rays, kd, &entries, robust ? &disagree_robust : &disagree);
+        if (!e.ok()) return e.status();
+        embrees.push_back(*std::move(e));
+      }
     }
+    const auto is_embree = [&](const Entry& e) {
+      return std::any_of(embrees.begin(), embrees.end(),
+                         [&](const auto& t) { return t.get() == e.tracer; });
+    };
     const size_t n_kd = proto->size();  // entries[0, n_kd) are kd-trees
     const size_t n_traced = entries.size();  // then Embree's, then the replays
     std::vector<std::unique_ptr<ReplayTracer>> replays;
@@ -267,7 +280,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       if (!e.kernel.empty()) kernel.emplace(e.kernel);  // checked in validation
       if (e.replay != nullptr) e.replay->Rewind();
       RenderResult r = Render(*soup, *e.tracer, view, options_of(e));
-      if (e.tracer != embree.get() && r.rgb != recorded.rgb) {
+      if (!is_embree(e) && r.rgb != recorded.rgb) {
         return absl::InternalError(absl::StrCat(e.name, ": image differs"));
       }
       if (e.replay != nullptr && e.replay->overran()) {
@@ -316,8 +329,12 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     // Ratios of each kd-tree tracer to Embree's single rays and, when timed,
     // to its packets; with the replays, of the tracing times alone too.
     Json ratios = Json::object(), packet_ratios = Json::object(), trace_only = Json::object();
-    if (use_embree) ratios = bench::RatiosTo(entries, n_kd, entries[n_kd]);
-    if (n_traced > n_kd + 1) packet_ratios = bench::RatiosTo(entries, n_kd, entries[n_kd + 1]);
+    for (size_t k = n_kd; k < n_traced; ++k) {
+      if (entries[k].name == "embree") ratios = bench::RatiosTo(entries, n_kd, entries[k]);
+      if (entries[k].name == "embree_packet") {
+        packet_ratios = bench::RatiosTo(entries, n_kd, entries[k]);
+      }
+    }
     if (!replays.empty()) trace_only = bench::TraceOnly(entries, n_kd, n_traced, &tracers);
     Json rec = {{"bench", "render"},
                 {"scene", scene},
@@ -335,12 +352,13 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"ratio_kd_over_embree", std::move(ratios)},
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},
                 {"ratio_trace_only", std::move(trace_only)},
-                {"embree_native_ray16", embree != nullptr && embree->native_ray16()},
+                {"embree_native_ray16", !embrees.empty() && embrees[0]->native_ray16()},
                 {"packet_counts", packet_counts}};
     rec["validation"] = {{"variants_vs_kd_mismatches", variant_json},
                          {"brute_force_checked", checked},
                          {"brute_force_mismatches", bf_bad},
-                         {"embree_disagreements", disagree}};
+                         {"embree_disagreements", disagree},
+                         {"embree_robust_disagreements", disagree_robust}};
     rec["timing"] = {{"method", "warm-up excluded; then rounds rendering every tracer once, in an "
                                 "order rotating per round, alone under the timing lock; ratios "
                                 "paired per round"},

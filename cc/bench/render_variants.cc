@@ -7,6 +7,7 @@
 #include "cc/kdtree/env_file.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/traversal.h"
+#include "cc/render/compare.h"
 
 namespace kdtree {
 namespace bench {
@@ -67,6 +68,21 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
     entries.emplace_back(e.name, e.tracer.get(), env_packets, env_packets);
   }
   return entries;
+}
+
+absl::StatusOr<std::unique_ptr<EmbreeTracer>> AddEmbree(const TriangleSoup& soup,
+                                                        const EmbreeOptions& options,
+                                                        const std::string& name, bool packets,
+                                                        const std::vector<RayRecord>& rays,
+                                                        const Tracer& kd,
+                                                        std::vector<Entry>* entries,
+                                                        Json* disagree) {
+  absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, options);
+  if (!embree.ok()) return embree.status();
+  *disagree = CompareTracers(rays, soup, kd, **embree).ToJson();
+  entries->emplace_back(name, embree->get());
+  if (packets) entries->emplace_back(absl::StrCat(name, "_packet"), embree->get(), true);
+  return embree;
 }
 
 }  // namespace bench

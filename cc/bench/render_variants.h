@@ -9,10 +9,12 @@
 
 #include "absl/status/statusor.h"
 #include "cc/bench/render_times.h"
+#include "cc/embree/embree_tracer.h"
 #include "cc/geometry/triangle.h"
 #include "cc/kdtree/config.h"
 #include "cc/kdtree/tree.h"
 #include "cc/render/kdtree_tracer.h"
+#include "cc/render/ray_record.h"
 
 namespace kdtree {
 namespace bench {
@@ -43,6 +45,18 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
 absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
                                                   const std::vector<std::string>& names,
                                                   bool env_packets);
+
+// Embree built on `soup` with `options`, appended to *entries as tracer
+// `name` (single rays) and, with `packets`, `name`_packet (16-ray packets);
+// *disagree gets its disagreements with `kd` on the recorded rays
+// (compare.h). Errors: Embree's.
+absl::StatusOr<std::unique_ptr<EmbreeTracer>> AddEmbree(const TriangleSoup& soup,
+                                                        const EmbreeOptions& options,
+                                                        const std::string& name, bool packets,
+                                                        const std::vector<RayRecord>& rays,
+                                                        const Tracer& kd,
+                                                        std::vector<Entry>* entries,
+                                                        Json* disagree);
 
 }  // namespace bench
 }  // namespace kdtree

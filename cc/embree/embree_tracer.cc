@@ -86,6 +86,7 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Triangl
 
   t->scene_ = rtcNewScene(t->device_);
   rtcSetSceneBuildQuality(t->scene_, ToRtc(options.quality));
+  if (options.robust) rtcSetSceneFlags(t->scene_, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(t->device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetGeometryBuildQuality(geom, ToRtc(options.quality));
   const size_t n = soup.size();

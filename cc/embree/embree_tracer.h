@@ -4,7 +4,8 @@
 // efficient CPU ray tracing", ACM TOG 33(4), 2014. Same triangle soup as the
 // kd-tree (one RTC_GEOMETRY_TYPE_TRIANGLE geometry, triangle i = vertices 3i,
 // 3i+1, 3i+2, so primID is our triangle index), rtcIntersect1 for closest hit
-// and rtcOccluded1 for any hit, default scene flags (not ROBUST, no filters).
+// and rtcOccluded1 for any hit, no filters; default scene flags unless
+// EmbreeOptions::robust.
 // Hit::u, v are Embree's barycentrics, the same convention as ours (hit point
 // = (1 - u - v) a + u b + v c). Embree reports hits with tnear <= t <= tfar.
 //
@@ -36,6 +37,14 @@ struct EmbreeOptions {
   EmbreeQuality quality = EmbreeQuality::kMedium;
   // Threads of the Embree device (rtcNewDevice "threads=N").
   int threads = 1;
+  // RTC_SCENE_FLAG_ROBUST: "acceleration structures that allow for robust
+  // traversal, and [no] optimizations that reduce arithmetic accuracy ...
+  // for avoiding artifacts caused by rays shooting through edges of
+  // neighboring primitives" (rtcSetSceneFlags(3)): Embree's own setting for
+  // the accuracy our watertight test (Woop, Benthin & Wald, JCGT 2(1), 2013)
+  // gives; it does not promise watertightness (Embree issue #387 reports
+  // misses on shared edges with it).
+  bool robust = false;
 };
 
 class EmbreeTracer : public Tracer {

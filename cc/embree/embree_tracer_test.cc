@@ -46,10 +46,12 @@ TEST(EmbreeTracer, AgreesWithBruteForceOnRenderedRaysExceptGrazing) {
   }
 }
 
-TEST(EmbreeTracer, AgreesWithBruteForceOnRandomRays) {
+// Random rays against brute force: the same hits, but for rays passing a
+// triangle edge within kGrazingUlps (a few at most).
+void CheckRandomRays(const EmbreeOptions& options) {
   const TriangleSoup soup = testing::BumpySphere(3, 9);
   const BruteForce bf(soup);
-  absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, EmbreeOptions());
+  absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree = EmbreeTracer::Create(soup, options);
   ASSERT_TRUE(embree.ok()) << embree.status();
   int hits = 0, grazing_only = 0;
   for (const Ray& ray : testing::RandomRays(soup, 20000, 3)) {
@@ -76,6 +78,16 @@ TEST(EmbreeTracer, AgreesWithBruteForceOnRandomRays) {
   }
   EXPECT_GT(hits, 5000);
   EXPECT_LT(grazing_only, 10);
+}
+
+// Default flags and RTC_SCENE_FLAG_ROBUST alike.
+TEST(EmbreeTracer, AgreesWithBruteForceOnRandomRays) {
+  for (const bool robust : {false, true}) {
+    SCOPED_TRACE(robust ? "robust" : "default flags");
+    EmbreeOptions options;
+    options.robust = robust;
+    CheckRandomRays(options);
+  }
 }
 
 // Embree's packet queries against its single-ray ones, on packets of 4x4
