@@ -30,8 +30,16 @@ cells are dashes and the caption counts them. Embree's times shown are the
 medians of all its timed rounds on the scene (over every kd-tree run that
 timed it).
 
-Output: embree.tex, embree_rays.tex, embree_ratio.pdf (the paired ratios per scene with their
-spread over the rounds; embree_ratio.tex is its figure) and macros (median
+Embree's robust setting (kdrt --embree_robust): beside our fast mode a
+second Embree, built with RTC_SCENE_FLAG_ROBUST, is timed in the same rounds
+(single rays and packets); its ratios are paired like the others
+(fast_render.embree_robust), and the rays exact arithmetic proves it wrong on
+are counted by ray kind (embree_robust.tex, embree_robust_ratio.pdf, macros
+EmbreeRobust*).
+
+Output: embree.tex, embree_rays.tex, embree_robust.tex, embree_ratio.pdf and
+embree_robust_ratio.pdf (the paired ratios per scene with their
+spread over the rounds) and macros (median
 and range of the perf ratios; OursOverFinal* and OursFastOverFinal*: our
 fastest tree, and its fast mode, over the report's final variant, as the
 quotient of their paired ratios to Embree).
@@ -140,8 +148,13 @@ def row(df, scene, recs):
     for key, r, column in (("final", final, "embree_ratio"),
                            ("beyond", beyond, "embree_ratio"),
                            ("fast", beyond, "fast_ratio"),
-                           ("best", beyond, "best_ratio")):
+                           ("best", beyond, "best_ratio"),
+                           ("robust", beyond, "robust_ratio"),
+                           ("robust_best", beyond, "robust_best_ratio")):
         out["ratio_" + key], out["runs_" + key] = paired(r, column)
+    out["robust_wrong"] = (None if out["ratio_robust"] is None else
+                           [int(beyond[c]) if kr.present(beyond[c]) else 0
+                            for c in ("robust_wrong_primary", "robust_wrong_shadow")])
     # Our fastest tree against the report's final variant: the two were
     # timed in different processes, each paired per round with Embree, so
     # their quotient through Embree (T_R final / T_R ours) cancels what a
@@ -280,20 +293,54 @@ def render_rays(data):
                           label="tab:embree-rays", size="footnotesize")
 
 
-# The figure's series: (row key, label, marker).
+def render_robust(data):
+    """Our tree sah-packet against Embree at its default flags and built
+    with RTC_SCENE_FLAG_ROBUST, timed in the same rounds (tab:embree-robust):
+    single rays against single rays, best mode against best mode, and the
+    rays exact arithmetic proves the robust Embree wrong on."""
+    groups = [("", 2), ("Single rays", 2), ("Best mode", 2), ("Robust Embree wrong", 2)]
+    header = ["Scene", "$N_{tri}$", "/Embree", "/robust", "/Embree", "/robust",
+              "primary", "shadow"]
+    body = [[latex.escape(r["scene"]), latex.fmt_int(int(r["n_tri"])),
+             _ratio(r["ratio_beyond"]), _ratio(r["ratio_robust"]),
+             _ratio(r["ratio_best"]), _ratio(r["ratio_robust_best"]),
+             latex.fmt_int(r["robust_wrong"][0]), latex.fmt_int(r["robust_wrong"][1])]
+            for r in data if r["ratio_robust"] is not None]
+    if not body:
+        body = [["\\emph{no runs with Embree's robust setting}"] + [""] * (len(header) - 1)]
+    caption = ("Our tree \\texttt{sah-packet} against Embree~3 at its default "
+               "flags (/Embree, as in Table~\\ref{tab:embree}) and against the same "
+               "Embree built with \\texttt{RTC\\_SCENE\\_FLAG\\_ROBUST} (/robust: "
+               "``robust traversal'', no ``optimizations that reduce arithmetic "
+               "accuracy''), both timed in the same rounds and paired per round: "
+               "Embree's render time over ours. Single rays: our single rays "
+               "against Embree's; best mode: per round the faster of each "
+               "side's single rays and packets. Our watertight test answers "
+               "every ray exactly; the last two columns count the rays on which "
+               "exact arithmetic proves the robust Embree wrong (its default "
+               "flags' wrong rays are in Table~\\ref{tab:embree-rays}).")
+    return latex.booktabs(header, body, align="lrrrrrrr", caption=caption,
+                          label="tab:embree-robust", size="footnotesize", groups=groups)
+
+
+# The figures' series: (row key, label, marker).
 SERIES = [("beyond", "SAH-4 (sah-packet), single rays", "o"),
           ("fast", "SAH-4, fastest mode (packets)", "s"),
           ("best", "best mode / Embree's best", "D"),
           ("final", "Clipping pruning (the report's final)", "^")]
+ROBUST_SERIES = [("beyond", "single rays / Embree's (default flags)", "o"),
+                 ("robust", "single rays / robust Embree's", "s"),
+                 ("best", "best mode / Embree's best (default flags)", "D"),
+                 ("robust_best", "best mode / robust Embree's best", "^")]
 
 
-def figure(ctx, data, filename="embree_ratio.pdf"):
+def figure(ctx, data, filename="embree_ratio.pdf", series=SERIES):
     """Per scene, each series' paired ratio (point) and its range over the
     rounds (error bar), and a line at 1 (as fast as Embree)."""
     with plt.rc_context(figures.STYLE):
         fig, ax = plt.subplots(figsize=(6.3, 3.4))
         xs = list(range(1, len(data) + 1))
-        for k, (key, label, marker) in enumerate(SERIES):
+        for k, (key, label, marker) in enumerate(series):
             pts = [(x + 0.18 * (k - 1.5), r["ratio_" + key], r["runs_" + key] or [r["ratio_" + key]])
                    for x, r in zip(xs, data) if r["ratio_" + key] is not None]
             if pts:
@@ -355,7 +402,9 @@ def generate(ctx):
     data = rows(df)
     ctx.write("embree.tex", render(data))
     ctx.write("embree_rays.tex", render_rays(data))
+    ctx.write("embree_robust.tex", render_robust(data))
     figure(ctx, data)
+    figure(ctx, data, "embree_robust_ratio.pdf", ROBUST_SERIES)
 
     def total(key):
         return (latex.fmt_int(sum(r[key] for r in data)), False)
@@ -365,6 +414,11 @@ def generate(ctx):
         **ratio_macros(data, "EmbreePacket", "ratio_beyond"),
         **ratio_macros(data, "EmbreeFast", "ratio_fast"),
         **ratio_macros(data, "EmbreeBest", "ratio_best"),
+        **ratio_macros(data, "EmbreeRobust", "ratio_robust"),
+        **ratio_macros(data, "EmbreeRobustBest", "ratio_robust_best"),
+        # Scenes on which the robust Embree answers a ray wrongly.
+        "EmbreeRobustWrongScenes": (str(sum(1 for r in data if r["robust_wrong"]
+                                            and sum(r["robust_wrong"]) > 0)), False),
         **ratio_macros(data, "EmbreeImage", "ratio_image"),
         **million_macros(data, "EmbreeImage", "ratio_image"),
         # On how many scenes the binned tree gave the sooner image.

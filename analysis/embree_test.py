@@ -137,6 +137,25 @@ class EmbreeTest(Fixture):
             trees["sah-packet"] = None
             self.assertEqual(embree.best_time_to_image(None, "alpha"), (None, [], None))
 
+    def test_robust_embree_table_and_macros(self):
+        self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.9]), n_tri=60000,
+                    fast_render=testdata.fast_render([1.1, 1.3], best=[0.8, 0.9],
+                                                     robust=([0.8, 0.84], [0.9, 1.1], 1234)))
+        self.append("beta", "sah-packet", testdata.embree(0.2, [0.7]), n_tri=60000,
+                    fast_render=testdata.fast_render([1.2]))
+        macros = embree.generate(self.ctx)
+        # beta's record has no robust Embree: left out of the table and macros.
+        self.assertEqual(macros["EmbreeRobustScenes"][0], "1")
+        self.assertEqual(macros["EmbreeRobustRatioMedian"][0], "0.82")
+        self.assertEqual(macros["EmbreeRobustBigAtLeastEighty"][0], "1")
+        self.assertEqual(macros["EmbreeRobustBestRatioMedian"][0], "1.00")
+        self.assertEqual(macros["EmbreeRobustWrongScenes"][0], "1")
+        with open(os.path.join(self.out, "embree_robust.tex"), encoding="utf-8") as f:
+            table = f.read()
+        self.assertIn("alpha & 60,000 & 0.80 & 0.82 & 0.85 & 1.00 & 0 & 1,234", table)
+        self.assertNotIn("beta", table)
+        self.assertIn("embree_robust_ratio.pdf", self.ctx.written)
+
     def test_ratio_figure(self):
         self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.9]),
                     fast_render=testdata.fast_render([1.1, 1.3]))

@@ -68,6 +68,15 @@ FIELDS = {
     "best_ratio": "fast_render.best_paired_ratio",
     "best_ratio_runs": "fast_render.best_paired_ratio_runs",
     "embree_packets_T_R_runs": "fast_render.embree_packets.T_R_runs",
+    # The same against Embree built with RTC_SCENE_FLAG_ROBUST (kdrt
+    # --embree_robust), timed in the same rounds: single rays against ours,
+    # best mode against ours, and the rays exact arithmetic proves it wrong on.
+    "robust_ratio": "fast_render.embree_robust.paired_ratio",
+    "robust_ratio_runs": "fast_render.embree_robust.paired_ratio_runs",
+    "robust_best_ratio": "fast_render.embree_robust.best_paired_ratio",
+    "robust_best_ratio_runs": "fast_render.embree_robust.best_paired_ratio_runs",
+    "robust_wrong_primary": "fast_render.embree_robust.wrong.primary",
+    "robust_wrong_shadow": "fast_render.embree_robust.wrong.shadow",
     "all_rays_per_s": "all_rays_per_s",
     "N_IT": "N_IT", "N_TR": "N_TR",
     "N_I": "N_I", "N_L": "N_L", "N_TP": "N_TP", "N_AP": "N_AP",

@@ -41,6 +41,10 @@ EXPECTED_MACROS = [
                                   "MillionAtLeastOne", "BinnedScenes")],
     *[p + s for p in ("Embree", "EmbreePacket", "EmbreeFast", "EmbreeBest", "EmbreeImage")
       for s in ("BigAtLeastEighty", "BigAtLeastOne")],
+    *[p + s for p in ("EmbreeRobust", "EmbreeRobustBest")
+      for s in ("Scenes", "RatioMedian", "RatioMin", "RatioMax", "BigScenes",
+                "BigAtLeastSeventy", "BigAtLeastEighty", "BigAtLeastOne")],
+    "EmbreeRobustWrongScenes",
     "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
     "BinnedScenes", "BinnedBuildOverEmbreeMedian", "BinnedPerfOverEmbreeMedian",

@@ -263,9 +263,11 @@ def kdrt_record(scene, preset, added=None, **over):
     return rec
 
 
-def fast_render(ratios, t_r=0.16, best=None):
+def fast_render(ratios, t_r=0.16, best=None, robust=None):
     """kdrt's "fast_render" object with its paired ratios to Embree (and,
-    with `best`, Embree's packets and the best-mode ratios per round)."""
+    with `best`, Embree's packets and the best-mode ratios per round; with
+    `robust`, (single-ray ratios, best-mode ratios, wrong shadow rays) of
+    Embree built with RTC_SCENE_FLAG_ROBUST)."""
     ratios = list(ratios)
     out = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
            "shadow_s": t_r / 2, "packet_kernel": "AVX3", "paired_ratio_runs": ratios,
@@ -278,6 +280,14 @@ def fast_render(ratios, t_r=0.16, best=None):
                                  "paired_ratio": statistics.median(best)}
         out["best_paired_ratio_runs"] = best
         out["best_paired_ratio"] = statistics.median(best)
+    if robust is not None:
+        single, best_r, wrong = robust
+        out["embree_robust"] = {
+            "T_R": t_r, "T_R_runs": [t_r] * len(single), "packets_T_R": t_r,
+            "packets_T_R_runs": [t_r] * len(single), "paired_ratio_runs": list(single),
+            "paired_ratio": statistics.median(single), "best_paired_ratio_runs": list(best_r),
+            "best_paired_ratio": statistics.median(best_r), "disagreements": wrong,
+            "wrong": {"primary": 0, "shadow": wrong, "ao": 0}}
     return out
 
 

@@ -99,6 +99,10 @@ ABSL_FLAG(std::string, embree, "off", "off | low | medium | high: also build and
 ABSL_FLAG(bool, embree_rounds, true,
           "With --embree: also time Embree's builds and renders in the rounds, paired with the "
           "kd-tree's (false: Embree is built once, untimed, only to compare every ray).");
+ABSL_FLAG(bool, embree_robust, true,
+          "With --embree, its timed rounds and --fast_render: also build Embree with "
+          "RTC_SCENE_FLAG_ROBUST (untimed) and time its single rays and packets in the same "
+          "rounds (record fast_render.embree_robust, with the rays it answers wrongly).");
 ABSL_FLAG(bool, fast_render, false,
           "Also time the renderer's fastest mode (primary and shadow rays in packets of 4x4 "
           "pixels, shadow rays leaving their origin triangle untested and searched from the "
@@ -279,6 +283,18 @@ absl::Status Run() {
     packets.packets = true;
     lanes.push_back({"embree packets", b.embree.get(), packets});
   }
+  // Embree's robust setting (embree_tracer.h EmbreeOptions::robust): its
+  // lanes, after the others, warmed by its comparison pass below.
+  std::unique_ptr<EmbreeTracer> robust;
+  if (embree_timed && fast && absl::GetFlag(FLAGS_embree_robust)) {
+    EmbreeOptions ro = eo;
+    ro.robust = true;
+    absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, ro);
+    if (!e.ok()) return e.status();
+    robust = *std::move(e);
+    lanes.push_back({"embree robust", robust.get(), ropt});
+    lanes.push_back({"embree robust packets", robust.get(), lanes[embree_lane + 1].opt});
+  }
   progress.Phase("stats", "recording rays");
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
@@ -295,7 +311,7 @@ absl::Status Run() {
     }
     progress.Phase("cost image");
   }
-  Json disagreements;
+  Json disagreements, robust_disagreements;
   if (use_embree) {
     progress.Step("comparing with embree");
     const Disagreements d = CompareTracers(recorded.rays, *soup, kd, *b.embree);
@@ -304,6 +320,13 @@ absl::Status Run() {
     progress.Phase("embree comparison (embree warm-up)");
     if (embree_timed) {
       lanes[embree_lane].warmup_s = progress.phases()["embree comparison (embree warm-up)"].get<double>();
+    }
+    if (robust != nullptr) {
+      progress.Step("comparing with embree (robust)");
+      robust_disagreements = CompareTracers(recorded.rays, *soup, kd, *robust).ToJson();
+      progress.Phase("embree robust comparison (its warm-up)");
+      lanes[lanes.size() - 2].warmup_s =
+          progress.phases()["embree robust comparison (its warm-up)"].get<double>();
     }
   }
   if (!absl::GetFlag(FLAGS_dump_rays).empty()) {
@@ -324,6 +347,7 @@ absl::Status Run() {
   progress.Phase("waiting for the timing lock");
   if (!(st = TimeRounds(*soup, view, repeats, budget_s, &lanes, step)).ok()) return st;
   progress.Phase("timed renders");
+  robust.reset();  // before the timed builds, as they free the other tracers
   // The lanes' tracers (the warm trees) are freed by the timed builds.
   st = TimeBuildRounds(*soup, rc->config, embree_timed ? &eo : nullptr, repeats, budget_s, step, &b);
   lock.Release();
@@ -366,6 +390,7 @@ absl::Status Run() {
   rec["image"] = png.empty() ? Json() : Json(png);
   rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
   AddComparisons(lanes, fast, use_embree ? &*quality : nullptr, embree_timed, b, disagreements, pixels, &rec);
+  AddRobustEmbree(lanes, robust_disagreements, &rec);
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();
   rec["provenance"] = prov.ToJson();

@@ -141,6 +141,22 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
   }
 }
 
+void AddRobustEmbree(const std::vector<Lane>& lanes, const Json& disagreements, Json* rec) {
+  const Lane* er = FindLane(lanes, "embree robust");
+  const Lane* erp = FindLane(lanes, "embree robust packets");
+  if (er == nullptr || erp == nullptr || lanes.size() < 2 || (*rec)["fast_render"].is_null()) return;
+  const std::vector<double> single = PairedRatios(er->timed.t_r, lanes[0].timed.t_r);
+  const std::vector<double> best = BestRatios(*er, *erp, lanes[0], lanes[1]);
+  Json wrong = Json::object();
+  for (const char* kind : {"primary", "shadow", "ao"}) wrong[kind] = disagreements[kind]["other_wrong"];
+  (*rec)["fast_render"]["embree_robust"] = {
+      {"T_R", Median(er->timed.t_r)},         {"T_R_runs", er->timed.t_r},
+      {"packets_T_R", Median(erp->timed.t_r)}, {"packets_T_R_runs", erp->timed.t_r},
+      {"paired_ratio_runs", single},          {"paired_ratio", Median(single)},
+      {"best_paired_ratio_runs", best},       {"best_paired_ratio", Median(best)},
+      {"disagreements", disagreements["total"]}, {"wrong", wrong}};
+}
+
 uint64_t Fnv64(const std::vector<uint8_t>& bytes) { return FnvBytes(bytes.data(), bytes.size()); }
 
 }  // namespace kdtree

@@ -52,6 +52,16 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
                     double pixels, nlohmann::ordered_json* rec);
 
+// With the lanes "embree robust" and "embree robust packets" (Embree built
+// with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds
+// fast_render.embree_robust, their times, their single rays against the
+// kd-tree's (the first lane) and the best mode of each against the other's
+// (the faster of single rays and the fast mode, the second lane), paired per
+// round, and per ray kind the rays exact arithmetic proves it wrong on
+// (`disagreements`: its Disagreements::ToJson against the kd-tree).
+void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_json& disagreements,
+                     nlohmann::ordered_json* rec);
+
 // FNV-1a 64 of the image's bytes (image_fnv64).
 uint64_t Fnv64(const std::vector<uint8_t>& bytes);
 

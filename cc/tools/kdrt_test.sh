@@ -32,6 +32,9 @@ VIEW
   --max_leaf_size=1 > lit2.json
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=1 --cache_dir= --threads=1 \
   --max_leaf_size=1 --fast_render > lit1.json
+# The fast mode with Embree's rounds: its packets and its robust setting too.
+"$KDRT" --mesh=scene.obj --view=lit.view --repeats=2 --cache_dir= --fast_render \
+  --embree=medium > fastemb.json
 # A budget of ~0 s: every timed step runs once although --repeats=4.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=4 --repeat_budget_s=1e-12 --cache_dir= \
   --embree=medium > budget.json
@@ -58,7 +61,7 @@ test $(( (size - 40) % 56 )) -eq 0
 # required one with its type, and no other (analysis/record_schema.py).
 /usr/bin/python3 "$RUNFILES/analysis/record_schema.py" \
   --schema "$RUNFILES/cc/tools/kdrt_record.schema.json" --sections kdrt \
-  lit.json dark.json lit2.json lit1.json budget.json dropped.json out/results.jsonl
+  lit.json dark.json lit2.json lit1.json budget.json dropped.json fastemb.json out/results.jsonl
 /usr/bin/python3 -c 'import json; r = json.load(open("lit.json")); r["surprise"] = 1
 print(json.dumps(r))' > undeclared.json
 if /usr/bin/python3 "$RUNFILES/analysis/record_schema.py" \
@@ -115,5 +118,15 @@ check(lit["fast_render"] is None, "no fast render by default")
 fast = one["fast_render"]
 check(len(fast["T_R_runs"]) == 1 and fast["T_R"] > 0 and fast["primary_s"] > 0
       and fast["shadow_s"] > 0, "fast render timed")
+fe = json.load(open("fastemb.json"))
+f, rob = fe["fast_render"], fe["fast_render"]["embree_robust"]
+check(len(f["embree_packets"]["T_R_runs"]) == 2 and len(rob["packets_T_R_runs"]) == 2,
+      "Embree's packets and its robust setting timed in the same two rounds")
+check(rob["paired_ratio_runs"] == [e / k for e, k in zip(rob["T_R_runs"], fe["T_R_runs"])],
+      "robust Embree against the kd-tree, paired per round")
+check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, q) for e, p, k, q in
+      zip(rob["T_R_runs"], rob["packets_T_R_runs"], fe["T_R_runs"], f["T_R_runs"])],
+      "best mode against best mode, per round")
+check(rob["wrong"]["primary"] == 0 and rob["disagreements"] >= 0, "robust Embree's answers")
 print("ok")
 PY

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cc/geometry/triangle.h"
@@ -32,6 +33,8 @@ struct Timed {
 
 // One tracer with its render options, timed in rounds beside the others.
 struct Lane {
+  Lane(std::string n, const Tracer* t, const RenderOptions& o)
+      : name(std::move(n)), tracer(t), opt(o) {}
   std::string name;  // for the progress line
   const Tracer* tracer = nullptr;
   RenderOptions opt;
