@@ -122,7 +122,7 @@ TEST(LaneTest, EveryBranchOnEveryKernelWidth) {
   const TriangleSoup soup = Grid(14);
   const BruteForce bf(soup);
   const std::vector<Ray> rays = Rays(soup, 5);
-  for (const std::string& preset : {"sah-packet", "clipping-pruning"}) {
+  for (const char* preset : {"sah-packet", "clipping-pruning"}) {
     absl::StatusOr<Config> config = Preset(preset);
     ASSERT_TRUE(config.ok());
     absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
@@ -170,7 +170,7 @@ TEST(LaneTest, FastTestOnThePacketsEqualsItByIndex) {
   const TraversalOptions fast = WithTest(IntersectionMode::kFast);
   TraversalOptions fast_end = fast;
   fast_end.from_end = true;
-  for (const std::string& preset : {"sah-packet", "clipping-pruning"}) {
+  for (const char* preset : {"sah-packet", "clipping-pruning"}) {
     absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset(preset));
     ASSERT_TRUE(tree.ok()) << tree.status();
     ASSERT_TRUE(HasLeafLayout(*tree));

@@ -160,7 +160,9 @@ TEST(SweepSah, ASplitThatSeparatesNothingNeverBeatsALeaf) {
   c.full_sah = true;
   SweepScratch scratch;
   const Split s = FindSweepSahSplit(refs.data(), 1, AABB({0, 0, 0}, {1, 1, 1}), c, &scratch);
-  if (s.found) EXPECT_GE(s.cost, LeafCost(1, c));
+  if (s.found) {
+    EXPECT_GE(s.cost, LeafCost(1, c));
+  }
   EXPECT_FALSE(FindSweepSahSplit(refs.data(), 0, AABB({0, 0, 0}, {1, 1, 1}), c, &scratch).found);
 }
 

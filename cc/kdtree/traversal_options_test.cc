@@ -82,7 +82,9 @@ TEST_P(Options, EveryCombinationEqualsBruteForce) {
   // Mailboxing never adds a test; with clipping (references in several leaves)
   // it removes some.
   EXPECT_LE(tests_mailbox, tests_plain);
-  if (config->use_clipping) EXPECT_LT(tests_mailbox, tests_plain);
+  if (config->use_clipping) {
+    EXPECT_LT(tests_mailbox, tests_plain);
+  }
 }
 
 // The fast test reads the same leaf packets (lane_fast_test-inl.h) and must

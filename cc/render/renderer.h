@@ -20,6 +20,11 @@
 // path. Traversal counts (N_IT, N_TR) come from a separate counting pass over
 // the recorded rays (traversal_counts.h), so counting never touches T_R.
 //
+// Pixel order: every ray pass, single rays or packets, visits the pixels in
+// 4x4 blocks, left to right along bands of 4 rows (tiles: within each tile),
+// so the two modes differ in how they trace and not in which rays come
+// together.
+//
 // Threads: 1 (default) runs plain loops on the calling thread. threads > 1
 // runs each step as tbb::parallel_for over square tiles of `tile_size` pixels
 // (over whole rows when recording rays, or when tile_size is 0), capped with

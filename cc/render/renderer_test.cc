@@ -175,6 +175,50 @@ TEST(Renderer, PacketsGiveTheSingleRayImage) {
   EXPECT_GT(a.s_hit, 0u);
 }
 
+// Logs each query's ray in call order; the packet queries are Tracer's
+// defaults, one ray at a time, so they log the packets' rays in order.
+class LoggingTracer : public Tracer {
+ public:
+  explicit LoggingTracer(const Tracer& inner) : inner_(inner) {}
+  std::string name() const override { return "logging"; }
+  using Tracer::Occluded;
+  Hit Intersect(const Ray& ray) const override {
+    log_.push_back(ray);
+    return inner_.Intersect(ray);
+  }
+  bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
+    log_.push_back(ray);
+    return inner_.Occluded(ray, origin_tri);
+  }
+  const std::vector<Ray>& log() const { return log_; }
+
+ private:
+  const Tracer& inner_;
+  mutable std::vector<Ray> log_;
+};
+
+// Single rays and packets visit the pixels in the same order (renderer.h,
+// "Pixel order"), so the two modes differ in how they trace only.
+TEST(Renderer, SingleRaysComeInThePacketsOrder) {
+  const View view = testing::SphereView(37, 22);  // blocks cut at both edges
+  const KdTreeTracer kd(Scene().tree);
+  const LoggingTracer single(kd), packets(kd);
+  RenderOptions opt;
+  Render(Scene().soup, single, view, opt);
+  opt.packets = true;
+  Render(Scene().soup, packets, view, opt);
+  ASSERT_EQ(single.log().size(), packets.log().size());
+  ASSERT_GT(single.log().size(), 37u * 22u);  // shadow rays too
+  for (size_t i = 0; i < single.log().size(); ++i) {
+    const Ray& a = single.log()[i];
+    const Ray& b = packets.log()[i];
+    ASSERT_TRUE(a.origin.x == b.origin.x && a.origin.y == b.origin.y &&
+                a.origin.z == b.origin.z && a.dir.x == b.dir.x && a.dir.y == b.dir.y &&
+                a.dir.z == b.dir.z && a.tmax == b.tmax)
+        << "query " << i;
+  }
+}
+
 // Shadow and AO rays that leave their origin triangle untested
 // (RenderOptions::skip_origin) give every recorded result, hence the image.
 TEST(Renderer, SkippingTheOriginTriangleChangesNoResult) {

@@ -170,7 +170,9 @@ TEST(Garbage, KeptDegenerateTrianglesBuildAndAreReported) {
       nan_hits += !(std::isfinite(h.t) && std::isfinite(h.u) && std::isfinite(h.v));
     }
     EXPECT_EQ(nan_hits, 0u);
-    if (mode == IntersectionMode::kWatertight) EXPECT_EQ(degenerate_hits, 0u);
+    if (mode == IntersectionMode::kWatertight) {
+      EXPECT_EQ(degenerate_hits, 0u);
+    }
     std::printf("ROBUST_JSON {\"case\": \"garbage/kept_degenerate\", \"mode\": \"%s\", "
                 "\"aimed_rays\": %zu, \"degenerate_triangle_hits\": %zu}\n",
                 IntersectionModeName(mode), rays.size(), degenerate_hits);
