@@ -392,8 +392,15 @@ def million_macros(data, prefix, key):
     """How many scenes of a million triangles or more have the ratio, and on
     how many it is 1.0 or more (#23: time to image no longer than Embree's)."""
     values = [r[key] for r in data if r[key] is not None and r["n_tri"] >= 1000000]
+    at_least_one = sum(x >= 1.0 for x in values)
+    # The report's clause: a profile without such scenes says so, rather
+    # than "on 0 of the 0 scenes".
+    clause = ("on %d of the %d scenes of a million triangles or more, ours is as fast or faster"
+              % (at_least_one, len(values)) if values else
+              "none of these scenes has a million triangles or more")
     return {prefix + "MillionScenes": (str(len(values)), False),
-            prefix + "MillionAtLeastOne": (str(sum(x >= 1.0 for x in values)), False)}
+            prefix + "MillionAtLeastOne": (str(at_least_one), False),
+            prefix + "MillionClause": (clause, False)}
 
 
 def generate(ctx):

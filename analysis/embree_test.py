@@ -137,6 +137,17 @@ class EmbreeTest(Fixture):
             trees["sah-packet"] = None
             self.assertEqual(embree.best_time_to_image(None, "alpha"), (None, [], None))
 
+    def test_million_clause_says_when_there_is_no_such_scene(self):
+        small = {"n_tri": 70000, "ratio_image": 0.9}
+        big = [{"n_tri": 1500000, "ratio_image": x} for x in (1.1, 0.8, None)]
+        m = embree.million_macros([small] + big, "X", "ratio_image")
+        self.assertEqual(m["XMillionScenes"][0], "2")
+        self.assertEqual(m["XMillionAtLeastOne"][0], "1")
+        self.assertEqual(m["XMillionClause"][0], "on 1 of the 2 scenes of a million triangles "
+                         "or more, ours is as fast or faster")
+        clause = embree.million_macros([small], "X", "ratio_image")["XMillionClause"][0]
+        self.assertEqual(clause, "none of these scenes has a million triangles or more")
+
     def test_robust_embree_table_and_macros(self):
         self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.9]), n_tri=60000,
                     fast_render=testdata.fast_render([1.1, 1.3], best=[0.8, 0.9],

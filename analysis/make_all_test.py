@@ -38,7 +38,7 @@ EXPECTED_MACROS = [
     "EmbreeBestBigAtLeastSeventy",
     *["EmbreeImage" + s for s in ("Scenes", "RatioMedian", "RatioMin", "RatioMax",
                                   "BigScenes", "BigAtLeastSeventy", "MillionScenes",
-                                  "MillionAtLeastOne", "BinnedScenes")],
+                                  "MillionAtLeastOne", "MillionClause", "BinnedScenes")],
     *[p + s for p in ("Embree", "EmbreePacket", "EmbreeFast", "EmbreeBest", "EmbreeImage")
       for s in ("BigAtLeastEighty", "BigAtLeastOne")],
     *[p + s for p in ("EmbreeRobust", "EmbreeRobustBest")
