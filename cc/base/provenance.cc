@@ -1,6 +1,8 @@
 #include "cc/base/provenance.h"
 
+#include <limits.h>
 #include <sched.h>
+#include <stdlib.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -68,13 +70,26 @@ std::string NowUtc() {
   return buf;
 }
 
+// Whether this process's executable lies in `root`'s Bazel output tree
+// (root/bazel-out, the symlink Bazel leaves in a workspace), that is, was
+// built from that checkout. True when /proc/self/exe cannot be resolved.
+bool BuiltInCheckout(const std::string& root) {
+  char exe[PATH_MAX], out[PATH_MAX];
+  if (realpath("/proc/self/exe", exe) == nullptr) return true;
+  if (realpath((root + "/bazel-out").c_str(), out) == nullptr) return false;
+  return std::string(exe).rfind(std::string(out) + "/", 0) == 0;
+}
+
 void SetCodeIdentity(const std::string& repo_root, Provenance* p) {
   const std::string root = repo_root.empty() ? "." : repo_root;
   // Pinned by the runner when it built the tools (source_id.sh's line): the
   // code the binary was built from, not whatever the checkout holds by now.
   std::string line = Env("KDTREE_SOURCE_ID");
   bool ok = !line.empty();
-  if (!ok) {
+  // Unpinned, the checkout's identity is the binary's only if the binary was
+  // built there: a copy, or a build of another worktree run with --repo
+  // pointing here, would otherwise claim this checkout's code. Unknown then.
+  if (!ok && BuiltInCheckout(root)) {
     line = RunCommand("sh " + ShellQuote(root + "/cc/base/source_id.sh") + " " + ShellQuote(root) + " 2>/dev/null",
                       &ok);
   }

@@ -38,7 +38,9 @@ struct Provenance {
 // cc/base/source_id.sh that a runner pinned when it built the tools, so a
 // record names the code its binary was built from even if the checkout is
 // edited while it runs), else the output of repo_root/cc/base/source_id.sh
-// now (a failure leaves commit and source_tree empty). $KDTREE_GIT_COMMIT and
+// now when this binary was built in that checkout (it lies under
+// repo_root/bazel-out); a binary from elsewhere, or a failure, leaves commit
+// and source_tree empty (unknown). $KDTREE_GIT_COMMIT and
 // $KDTREE_SOURCE_TREE, when set, replace the commit and the source tree
 // (tests). timing_lock is left
 // empty: the caller sets it when its timed steps held the lock.

@@ -1,6 +1,11 @@
 #include "cc/base/provenance.h"
 
+#include <limits.h>
+#include <stdlib.h>
+#include <unistd.h>
+
 #include <cstdlib>
+#include <string>
 
 #include "gtest/gtest.h"
 
@@ -44,6 +49,34 @@ TEST(Provenance, OutsideACheckoutTheCodeIsUnknown) {
   EXPECT_TRUE(j["source_tree"].is_null());
   p.timing_lock = "/tmp/x.lock";
   EXPECT_EQ(p.ToJson()["timed_beside"], 0);
+}
+
+// A checkout whose source_id.sh names commit "abc", tree "def".
+std::string FakeCheckout(const std::string& name) {
+  const std::string root = std::string(std::getenv("TEST_TMPDIR")) + "/" + name;
+  EXPECT_EQ(std::system(("mkdir -p " + root + "/cc/base && printf 'echo abc false def\\n' > " + root +
+                         "/cc/base/source_id.sh")
+                            .c_str()),
+            0);
+  return root;
+}
+
+TEST(Provenance, ABinaryBuiltElsewhereDoesNotTakeTheCheckoutsCode) {
+  const std::string root = FakeCheckout("foreign");  // no bazel-out at all
+  const Provenance p = CollectProvenance(root);
+  EXPECT_EQ(p.commit, "");
+  EXPECT_EQ(p.source_tree, "");
+}
+
+TEST(Provenance, ABinaryBuiltInTheCheckoutTakesItsCode) {
+  const std::string root = FakeCheckout("home");
+  char exe[PATH_MAX];
+  ASSERT_NE(realpath("/proc/self/exe", exe), nullptr);
+  const std::string dir = std::string(exe).substr(0, std::string(exe).rfind('/'));
+  ASSERT_EQ(symlink(dir.c_str(), (root + "/bazel-out").c_str()), 0);
+  const Provenance p = CollectProvenance(root);
+  EXPECT_EQ(p.commit, "abc");
+  EXPECT_EQ(p.source_tree, "def");
 }
 
 }  // namespace
