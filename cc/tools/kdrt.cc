@@ -273,19 +273,18 @@ absl::Status Run() {
   }
   const size_t embree_lane = lanes.size();
   if (embree_timed) lanes.push_back({"embree", b.embree.get(), ropt});
-  if (embree_timed && fast) {
-    // Embree's packet calls on the same 4x4 blocks (rtcIntersect16 with the
-    // coherent flag, rtcOccluded16): with them, Embree's best mode per round
-    // is the faster of its two (#23's fair bar; record fast_render). Like
-    // the kd-tree's fast mode, it has no warm-up pass of its own: it runs
-    // on the structure the single-ray passes warmed.
-    RenderOptions packets = ropt;
-    packets.packets = true;
-    lanes.push_back({"embree packets", b.embree.get(), packets});
-  }
+  // Embree's packet calls on the same 4x4 blocks (rtcIntersect16 with the
+  // coherent flag, rtcOccluded16): with them, Embree's best mode per round
+  // is the faster of its two (#23's fair bar; record fast_render). Like the
+  // kd-tree's fast mode, it has no warm-up pass of its own: it runs on the
+  // structure the single-ray passes warmed.
+  RenderOptions embree_packets = ropt;
+  embree_packets.packets = true;
+  if (embree_timed && fast) lanes.push_back({"embree packets", b.embree.get(), embree_packets});
   // Embree's robust setting (embree_tracer.h EmbreeOptions::robust): its
   // lanes, after the others, warmed by its comparison pass below.
   std::unique_ptr<EmbreeTracer> robust;
+  const size_t robust_lane = lanes.size();
   if (embree_timed && fast && absl::GetFlag(FLAGS_embree_robust)) {
     EmbreeOptions ro = eo;
     ro.robust = true;
@@ -293,7 +292,7 @@ absl::Status Run() {
     if (!e.ok()) return e.status();
     robust = *std::move(e);
     lanes.push_back({"embree robust", robust.get(), ropt});
-    lanes.push_back({"embree robust packets", robust.get(), lanes[embree_lane + 1].opt});
+    lanes.push_back({"embree robust packets", robust.get(), embree_packets});
   }
   progress.Phase("stats", "recording rays");
   RenderOptions rec_opt = ropt;
@@ -325,7 +324,7 @@ absl::Status Run() {
       progress.Step("comparing with embree (robust)");
       robust_disagreements = CompareTracers(recorded.rays, *soup, kd, *robust).ToJson();
       progress.Phase("embree robust comparison (its warm-up)");
-      lanes[lanes.size() - 2].warmup_s =
+      lanes[robust_lane].warmup_s =
           progress.phases()["embree robust comparison (its warm-up)"].get<double>();
     }
   }
