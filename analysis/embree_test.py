@@ -77,9 +77,15 @@ class EmbreeTest(Fixture):
                     n_tri=60000)
         self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.8, 0.9]),
                     T_R=0.25, n_tri=60000,
-                    fast_render=testdata.fast_render([1.2, 1.25, 1.4]))
+                    fast_render=testdata.fast_render([1.2, 1.25, 1.4],
+                                                     single=[0.75, 0.85, 0.95]))
         macros = embree.generate(self.ctx)
         self.assertEqual(macros["EmbreeFastScenes"][0], "1")
+        # Single rays against single rays: the faster of our two single-ray
+        # modes (fast_render.single_paired_ratio), not the report's rules alone.
+        self.assertEqual(macros["EmbreeSingleRatioMedian"][0], "0.85")
+        self.assertEqual(macros["EmbreeSingleBigAtLeastEighty"][0], "1")
+        self.assertEqual(self.rows()[0]["runs_single"], [0.75, 0.85, 0.95])
         self.assertEqual(macros["EmbreeFastRatioMedian"][0], "1.25")
         self.assertEqual(macros["EmbreeFastBigAtLeastSeventy"][0], "1")
         self.assertEqual(macros["EmbreeRatioMedian"][0], "0.50")
@@ -151,7 +157,8 @@ class EmbreeTest(Fixture):
     def test_robust_embree_table_and_macros(self):
         self.append("alpha", "sah-packet", testdata.embree(0.2, [0.7, 0.9]), n_tri=60000,
                     fast_render=testdata.fast_render([1.1, 1.3], best=[0.8, 0.9],
-                                                     robust=([0.8, 0.84], [0.9, 1.1], 1234)))
+                                                     robust=([0.8, 0.84], [0.9, 1.1], 1234),
+                                                     single=[0.78, 0.82]))
         self.append("beta", "sah-packet", testdata.embree(0.2, [0.7]), n_tri=60000,
                     fast_render=testdata.fast_render([1.2]))
         macros = embree.generate(self.ctx)

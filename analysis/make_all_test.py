@@ -41,7 +41,7 @@ EXPECTED_MACROS = [
                                   "MillionAtLeastOne", "MillionClause", "BinnedScenes")],
     *[p + s for p in ("Embree", "EmbreePacket", "EmbreeFast", "EmbreeBest", "EmbreeImage")
       for s in ("BigAtLeastEighty", "BigAtLeastOne")],
-    *[p + s for p in ("EmbreeRobust", "EmbreeRobustBest")
+    *[p + s for p in ("EmbreeSingle", "EmbreeRobust", "EmbreeRobustBest")
       for s in ("Scenes", "RatioMedian", "RatioMin", "RatioMax", "BigScenes",
                 "BigAtLeastSeventy", "BigAtLeastEighty", "BigAtLeastOne")],
     "EmbreeRobustWrongScenes",

@@ -44,7 +44,8 @@ def write_results(root):
             over = {"embree": emb}
             if v == "sah-packet":
                 over["fast_render"] = testdata.fast_render([0.9, 1.0, 1.1],
-                                                           best=[0.7, 0.75, 0.8])
+                                                           best=[0.7, 0.75, 0.8],
+                                                           single=[0.7, 0.8, 0.9])
             if scene == "bunny":
                 a = cost_image()
                 over["traversal"] = testdata.cost_traversal(a)

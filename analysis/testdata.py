@@ -263,15 +263,22 @@ def kdrt_record(scene, preset, added=None, **over):
     return rec
 
 
-def fast_render(ratios, t_r=0.16, best=None, robust=None):
+def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None):
     """kdrt's "fast_render" object with its paired ratios to Embree (and,
     with `best`, Embree's packets and the best-mode ratios per round; with
     `robust`, (single-ray ratios, best-mode ratios, wrong shadow rays) of
-    Embree built with RTC_SCENE_FLAG_ROBUST)."""
+    Embree built with RTC_SCENE_FLAG_ROBUST; with `single`, our other
+    single-ray mode and Embree's single rays over the faster of ours)."""
     ratios = list(ratios)
     out = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
-           "shadow_s": t_r / 2, "packet_kernel": "AVX3", "paired_ratio_runs": ratios,
-           "paired_ratio": statistics.median(ratios)}
+           "shadow_s": t_r / 2, "packet_kernel": "AVX3"}
+    if single is not None:
+        out["single_origin"] = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios),
+                                "primary_s": t_r / 2, "shadow_s": t_r / 2}
+    out.update({"paired_ratio_runs": ratios, "paired_ratio": statistics.median(ratios)})
+    if single is not None:
+        out["single_paired_ratio_runs"] = list(single)
+        out["single_paired_ratio"] = statistics.median(single)
     if best is not None:
         best = list(best)
         out["embree_packets"] = {"T_R": t_r, "T_R_runs": [t_r] * len(best),
@@ -284,8 +291,8 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None):
         single, best_r, wrong = robust
         out["embree_robust"] = {
             "T_R": t_r, "T_R_runs": [t_r] * len(single), "packets_T_R": t_r,
-            "packets_T_R_runs": [t_r] * len(single), "paired_ratio_runs": list(single),
-            "paired_ratio": statistics.median(single), "best_paired_ratio_runs": list(best_r),
+            "packets_T_R_runs": [t_r] * len(single), "single_paired_ratio_runs": list(single),
+            "single_paired_ratio": statistics.median(single), "best_paired_ratio_runs": list(best_r),
             "best_paired_ratio": statistics.median(best_r), "disagreements": wrong,
             "wrong": {"primary": 0, "shadow": wrong, "ao": 0}}
     return out

@@ -106,8 +106,8 @@ ABSL_FLAG(bool, embree_robust, true,
 ABSL_FLAG(bool, fast_render, false,
           "Also time the renderer's fastest mode (primary and shadow rays in packets of 4x4 "
           "pixels, shadow rays leaving their origin triangle untested and searched from the "
-          "light): record field "
-          "fast_render, held to the timed image.");
+          "light), and those shadow rays one at a time (our other single-ray mode): record "
+          "field fast_render, held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
 ABSL_FLAG(double, memory_budget_gb, 0,
           "Memory a run may use before it is refused (GB; 0 = half of physical memory).");
@@ -255,13 +255,13 @@ absl::Status Run() {
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
   // The renders: the kd-tree, optionally its fastest mode (packets of 4x4
   // pixels, shadow rays leaving their origin triangle untested and searched
-  // from the light: RenderOptions::skip_origin), optionally
-  // Embree. Their warm-ups are the untimed passes every run makes anyway over
+  // from the light: RenderOptions::skip_origin) and those shadow rays one at
+  // a time, optionally Embree. Their warm-ups are the untimed passes every run makes anyway over
   // the frame's rays: the kd-tree's recording render (the rays and hits for
   // the counting pass, the comparison and the dump), and the comparison pass
-  // that traces the recorded rays through Embree; the fast mode runs on the
-  // warmed tree, and each of its timed renders must reproduce the kd-tree's
-  // image and hit counts.
+  // that traces the recorded rays through Embree; the fast modes run on the
+  // warmed tree, and each of their timed renders must reproduce the
+  // kd-tree's image and hit counts.
   std::vector<Lane> lanes;
   lanes.push_back({"kd-tree", &kd, ropt});
   const bool fast = absl::GetFlag(FLAGS_fast_render);
@@ -270,6 +270,11 @@ absl::Status Run() {
     fo.packets = true;
     fo.skip_origin = true;
     lanes.push_back({"kd-tree fast", &kd, fo});
+    // Our other single-ray mode: the fast mode's shadow rays, one ray at a
+    // time (single rays against single rays takes the faster per round).
+    RenderOptions so = ropt;
+    so.skip_origin = true;
+    lanes.push_back({kSingleOriginLane, &kd, so});
   }
   const size_t embree_lane = lanes.size();
   if (embree_timed) lanes.push_back({"embree", b.embree.get(), ropt});

@@ -44,20 +44,26 @@ nlohmann::ordered_json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b,
 void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const RenderResult& r,
                        nlohmann::ordered_json* rec);
 
+// The timed lane of our single rays with the fast mode's shadow rays
+// (RenderOptions::skip_origin, no packets), run with the fast mode.
+inline constexpr char kSingleOriginLane[] = "kd-tree single origin";
+
 // Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
 // "fast_render": lanes are the timed lanes (the kd-tree's first, then the
-// fast mode's when `fast`, then Embree's when `embree_timed`); `quality` is
-// null without Embree.
+// fast mode's when `fast`, then Embree's when `embree_timed`; a lane named
+// kSingleOriginLane anywhere); `quality` is null without Embree. Single rays
+// against single rays take per round the faster of our single-ray lanes (the
+// first and kSingleOriginLane), best mode against best mode the faster of
+// all of ours (with the fast mode) over the faster of Embree's two.
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
                     double pixels, nlohmann::ordered_json* rec);
 
 // With the lanes "embree robust" and "embree robust packets" (Embree built
 // with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds
-// fast_render.embree_robust, their times, their single rays against the
-// kd-tree's (the first lane) and the best mode of each against the other's
-// (the faster of single rays and the fast mode, the second lane), paired per
-// round, and per ray kind the rays exact arithmetic proves it wrong on
+// fast_render.embree_robust, their times, their single rays against our
+// faster single-ray lane and the best mode of each against the other's (as
+// AddComparisons pairs them), per round, and per ray kind the rays exact arithmetic proves it wrong on
 // (`disagreements`: its Disagreements::ToJson against the kd-tree).
 void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_json& disagreements,
                      nlohmann::ordered_json* rec);

@@ -122,10 +122,22 @@ fe = json.load(open("fastemb.json"))
 f, rob = fe["fast_render"], fe["fast_render"]["embree_robust"]
 check(len(f["embree_packets"]["T_R_runs"]) == 2 and len(rob["packets_T_R_runs"]) == 2,
       "Embree's packets and its robust setting timed in the same two rounds")
-check(rob["paired_ratio_runs"] == [e / k for e, k in zip(rob["T_R_runs"], fe["T_R_runs"])],
-      "robust Embree against the kd-tree, paired per round")
-check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, q) for e, p, k, q in
-      zip(rob["T_R_runs"], rob["packets_T_R_runs"], fe["T_R_runs"], f["T_R_runs"])],
+so = f["single_origin"]
+check(len(so["T_R_runs"]) == 2 and so["T_R"] > 0 and so["shadow_s"] > 0,
+      "our other single-ray mode timed in the same two rounds")
+check(f["single_paired_ratio_runs"] == [e / min(k, s) for e, k, s in
+      zip(fe["embree"]["T_R_runs"], fe["T_R_runs"], so["T_R_runs"])],
+      "single rays: Embree's over the faster of ours, paired per round")
+check(f["best_paired_ratio_runs"] == [min(e, p) / min(k, s, q) for e, p, k, s, q in
+      zip(fe["embree"]["T_R_runs"], f["embree_packets"]["T_R_runs"], fe["T_R_runs"],
+          so["T_R_runs"], f["T_R_runs"])],
+      "best mode: the fastest of each side, per round")
+check(rob["single_paired_ratio_runs"] == [e / min(k, s) for e, k, s in
+      zip(rob["T_R_runs"], fe["T_R_runs"], so["T_R_runs"])],
+      "robust Embree against the faster of our single rays, paired per round")
+check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, s, q) for e, p, k, s, q in
+      zip(rob["T_R_runs"], rob["packets_T_R_runs"], fe["T_R_runs"], so["T_R_runs"],
+          f["T_R_runs"])],
       "best mode against best mode, per round")
 check(rob["wrong"]["primary"] == 0 and rob["disagreements"] >= 0, "robust Embree's answers")
 print("ok")
