@@ -125,6 +125,10 @@ class EmbreeTest(Fixture):
         # render round: ours 0.25, 0.4 (median 0.325), Embree's 0.2, 0.3 (0.25).
         self.assertAlmostEqual(ratio, (0.2 + 0.25) / (1.0 + 0.325))
         self.assertEqual(runs, [])
+        # The second single-ray mode counts where the record has it: ours per
+        # round min(0.5, 0.25, 0.2), min(0.4, 0.5, 0.45), median 0.3.
+        ratio, _ = embree.time_to_image(dict(r, T_R_single_origin_runs=[0.2, 0.45]))
+        self.assertAlmostEqual(ratio, (0.2 + 0.25) / (1.0 + 0.3))
         self.assertEqual(embree.time_to_image(dict(r, T_R_fast_runs=[0.3])), (None, []))
         self.assertEqual(embree.time_to_image(dict(r, embree_packets_T_R_runs=None)), (None, []))
         self.assertEqual(embree.time_to_image(None), (None, []))

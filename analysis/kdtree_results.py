@@ -65,11 +65,12 @@ FIELDS = {
     "fast_ratio_runs": "fast_render.paired_ratio_runs",
     # Single rays against single rays (#23's bar), paired per round:
     # Embree's single rays over the faster of our two single-ray modes (the
-    # report's rules, and the fast mode's shadow rays one ray at a time).
+    # report's rules, and the fast mode's secondary rays one ray at a time).
+    "T_R_single_origin_runs": "fast_render.single_origin.T_R_runs",
     "single_ratio": "fast_render.single_paired_ratio",
     "single_ratio_runs": "fast_render.single_paired_ratio_runs",
     # Best mode against best mode, paired per round: the faster of Embree's
-    # single rays and its packets (rtcIntersect16) over the faster of ours.
+    # single rays and its packets (rtcIntersect16) over the fastest of ours.
     "best_ratio": "fast_render.best_paired_ratio",
     "best_ratio_runs": "fast_render.best_paired_ratio_runs",
     "embree_packets_T_R_runs": "fast_render.embree_packets.T_R_runs",

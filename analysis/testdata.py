@@ -288,11 +288,13 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None):
         out["best_paired_ratio_runs"] = best
         out["best_paired_ratio"] = statistics.median(best)
     if robust is not None:
-        single, best_r, wrong = robust
+        robust_single, best_r, wrong = robust
+        n = len(robust_single)
         out["embree_robust"] = {
-            "T_R": t_r, "T_R_runs": [t_r] * len(single), "packets_T_R": t_r,
-            "packets_T_R_runs": [t_r] * len(single), "single_paired_ratio_runs": list(single),
-            "single_paired_ratio": statistics.median(single), "best_paired_ratio_runs": list(best_r),
+            "T_R": t_r, "T_R_runs": [t_r] * n, "packets_T_R": t_r,
+            "packets_T_R_runs": [t_r] * n, "single_paired_ratio_runs": list(robust_single),
+            "single_paired_ratio": statistics.median(robust_single),
+            "best_paired_ratio_runs": list(best_r),
             "best_paired_ratio": statistics.median(best_r), "disagreements": wrong,
             "wrong": {"primary": 0, "shadow": wrong, "ao": 0}}
     return out

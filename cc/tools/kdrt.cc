@@ -14,7 +14,8 @@
 // for disagreements (compare.h; Embree's warm-up); optionally dump the rays.
 // Then timed, alone under the lock: `repeats` rounds of renders alternating
 // the tracers (the kd-tree; with --fast_render the renderer's packets with
-// origin skipping, held to the same image; Embree) on the warm trees (T_R =
+// origin skipping and the same origin skipping one ray at a time, held to the
+// same image; Embree) on the warm trees (T_R =
 // median; Embree's time over the kd-tree's, per round, then the median:
 // perf_ratio_kd_over_embree), then `repeats` rounds of builds (T_B = median);
 // --repeat_budget_s caps the rounds, at least one. With --noembree_rounds
@@ -269,7 +270,7 @@ absl::Status Run() {
     RenderOptions fo = ropt;
     fo.packets = true;
     fo.skip_origin = true;
-    lanes.push_back({"kd-tree fast", &kd, fo});
+    lanes.push_back({kFastLane, &kd, fo});
     // Our other single-ray mode: the fast mode's shadow rays, one ray at a
     // time (single rays against single rays takes the faster per round).
     RenderOptions so = ropt;

@@ -122,10 +122,10 @@ std::vector<const Lane*> OurSingleLanes(const std::vector<Lane>& lanes) {
   return out;
 }
 
-// Our single-ray modes and the fast mode (the second lane).
-std::vector<const Lane*> OurLanes(const std::vector<Lane>& lanes) {
+// Our single-ray modes and the fast mode.
+std::vector<const Lane*> OurLanes(const std::vector<Lane>& lanes, const Lane& fast) {
   std::vector<const Lane*> out = OurSingleLanes(lanes);
-  out.push_back(&lanes[1]);
+  out.push_back(&fast);
   return out;
 }
 
@@ -143,8 +143,9 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
   out["disagreements"] = quality != nullptr ? disagreements : Json();
   out["perf_ratio_kd_over_embree"] = nullptr;
   out["fast_render"] = nullptr;
-  if (fast) {
-    out["fast_render"] = LaneTimes(lanes[1]);
+  const Lane* fl = fast ? FindLane(lanes, kFastLane) : nullptr;
+  if (fl != nullptr) {
+    out["fast_render"] = LaneTimes(*fl);
     out["fast_render"]["packet_kernel"] = PacketKernelTarget();
     if (const Lane* so = FindLane(lanes, kSingleOriginLane)) {
       out["fast_render"]["single_origin"] = LaneTimes(*so);
@@ -154,20 +155,19 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
   const Lane* el = embree_timed ? FindLane(lanes, "embree") : nullptr;
   out["embree"] = EmbreeJson(*quality, b, disagreements, el, lanes.front(), pixels);
   out["perf_ratio_kd_over_embree"] = out["embree"]["paired_ratio"];
-  if (fast && el != nullptr) {
-    const std::vector<double> fp = PairedRatios(el->timed.t_r, lanes[1].timed.t_r);
+  if (fl != nullptr && el != nullptr) {
+    const std::vector<double> fp = PairedRatios(el->timed.t_r, fl->timed.t_r);
     out["fast_render"]["paired_ratio_runs"] = fp;
     out["fast_render"]["paired_ratio"] = Median(fp);
     const std::vector<double> single = FastestRatios({el}, OurSingleLanes(lanes));
     out["fast_render"]["single_paired_ratio_runs"] = single;
     out["fast_render"]["single_paired_ratio"] = Median(single);
     if (const Lane* ep = FindLane(lanes, "embree packets")) {
-      const std::vector<double> pp = PairedRatios(ep->timed.t_r, lanes[1].timed.t_r);
-      const std::vector<double> best = FastestRatios({el, ep}, OurLanes(lanes));
-      out["fast_render"]["embree_packets"] = {
-          {"T_R", Median(ep->timed.t_r)}, {"T_R_runs", ep->timed.t_r},
-          {"primary_s", Median(ep->timed.t_primary)}, {"shadow_s", Median(ep->timed.t_shadow)},
-          {"paired_ratio_runs", pp}, {"paired_ratio", Median(pp)}};
+      const std::vector<double> pp = PairedRatios(ep->timed.t_r, fl->timed.t_r);
+      const std::vector<double> best = FastestRatios({el, ep}, OurLanes(lanes, *fl));
+      Json& packets = out["fast_render"]["embree_packets"] = LaneTimes(*ep);
+      packets["paired_ratio_runs"] = pp;
+      packets["paired_ratio"] = Median(pp);
       out["fast_render"]["best_paired_ratio_runs"] = best;
       out["fast_render"]["best_paired_ratio"] = Median(best);
     }
@@ -177,9 +177,10 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
 void AddRobustEmbree(const std::vector<Lane>& lanes, const Json& disagreements, Json* rec) {
   const Lane* er = FindLane(lanes, "embree robust");
   const Lane* erp = FindLane(lanes, "embree robust packets");
-  if (er == nullptr || erp == nullptr || lanes.size() < 2 || (*rec)["fast_render"].is_null()) return;
+  const Lane* fl = FindLane(lanes, kFastLane);
+  if (er == nullptr || erp == nullptr || fl == nullptr || (*rec)["fast_render"].is_null()) return;
   const std::vector<double> single = FastestRatios({er}, OurSingleLanes(lanes));
-  const std::vector<double> best = FastestRatios({er, erp}, OurLanes(lanes));
+  const std::vector<double> best = FastestRatios({er, erp}, OurLanes(lanes, *fl));
   Json wrong = Json::object();
   for (const char* kind : {"primary", "shadow", "ao"}) wrong[kind] = disagreements[kind]["other_wrong"];
   (*rec)["fast_render"]["embree_robust"] = {

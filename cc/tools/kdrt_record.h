@@ -44,14 +44,15 @@ nlohmann::ordered_json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b,
 void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const RenderResult& r,
                        nlohmann::ordered_json* rec);
 
-// The timed lane of our single rays with the fast mode's shadow rays
-// (RenderOptions::skip_origin, no packets), run with the fast mode.
+// The timed lanes of the renderer's fastest mode (RenderOptions::packets and
+// skip_origin) and of our other single-ray mode, the fast mode's secondary
+// rays one ray at a time (skip_origin, no packets); both with --fast_render.
+inline constexpr char kFastLane[] = "kd-tree fast";
 inline constexpr char kSingleOriginLane[] = "kd-tree single origin";
 
 // Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
-// "fast_render": lanes are the timed lanes (the kd-tree's first, then the
-// fast mode's when `fast`, then Embree's when `embree_timed`; a lane named
-// kSingleOriginLane anywhere); `quality` is null without Embree. Single rays
+// "fast_render": lanes are the timed lanes (the kd-tree's first; with `fast`
+// kFastLane and kSingleOriginLane; Embree's when `embree_timed`); `quality` is null without Embree. Single rays
 // against single rays take per round the faster of our single-ray lanes (the
 // first and kSingleOriginLane), best mode against best mode the faster of
 // all of ours (with the fast mode) over the faster of Embree's two.
