@@ -150,6 +150,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   const uint32_t* refs = tree.refs.data();
   const Vec3* verts = tree.verts.data();
   const float* soa = kLeafOrdered ? tree.leaf_soa.data() : nullptr;
+  const float* soa_end = kLeafOrdered ? soa + tree.leaf_soa.size() : nullptr;
   uint32_t index = 0;
   for (;;) {
     const KdNode* node = &nodes[index];
@@ -203,12 +204,21 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
       const float* packet =
           first == kEmptyLeaf ? nullptr : soa + static_cast<size_t>(first) * kPacketFloats;
       while (packet != nullptr) {
-        // This step's packets: `packet` and, when a step takes two and the
-        // leaf has another, the next one (else `packet` again, masked off).
+        // This step's packets: `packet` and, when a step takes two, the next
+        // one in memory, whose lanes are masked off when `packet` ends the
+        // leaf (`only`). Its address does not wait for `packet`'s ids, so
+        // the two packets' cache lines are requested at once; choosing it by
+        // the ids (a conditional move) made every second packet wait for the
+        // first one's last line. render_bench, sah-packet, Embree's single
+        // rays over kd_origin, 6 processes each, old and new alternated:
+        // hairball-1m 0.53-0.58 -> 0.58-0.63; bunny, city, rungholt-1m,
+        // courtyard-1m, fforest and hairball-small within noise.
+        const float* next = packet + kPacketFloats;
+        const float* second = kStepPackets == 1 || next == soa_end ? packet : next;
         uint32_t first_id;
         std::memcpy(&first_id, packet + kPacketIds, sizeof(first_id));
-        const bool only = kStepPackets == 1 || (first_id & kLastPacket) != 0;
-        const float* second = only ? packet : packet + kPacketFloats;
+        const bool ends = (first_id & kLastPacket) != 0;  // `packet` ends the leaf
+        const bool only = kStepPackets == 1 || ends;
         const hn::Vec<DU> ids = StepIds(du, packet, second);
         const hn::Vec<DU> clean_ids = hn::And(ids, hn::Set(du, ~kLastPacket));
         HWY_ALIGN uint32_t id[kStepPackets * kPacketLanes];
@@ -218,7 +228,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
                                     (only ? (1u << kPacketLanes) - 1 : kStepLanes));
         uint32_t last_id;
         std::memcpy(&last_id, second + kPacketIds, sizeof(last_id));
-        const bool last = (last_id & kLastPacket) != 0;
+        const bool last = ends || (last_id & kLastPacket) != 0;
         // Counting: the mailbox is checked before the test, so N_IT counts
         // the references really tested.
         if (kMailbox && kCount) live = Unmailboxed(live, id, mailbox);
