@@ -52,10 +52,11 @@ inline constexpr char kSingleOriginLane[] = "kd-tree single origin";
 
 // Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
 // "fast_render": lanes are the timed lanes (the kd-tree's first; with `fast`
-// kFastLane and kSingleOriginLane; Embree's when `embree_timed`); `quality` is null without Embree. Single rays
-// against single rays take per round the faster of our single-ray lanes (the
-// first and kSingleOriginLane), best mode against best mode the faster of
-// all of ours (with the fast mode) over the faster of Embree's two.
+// kFastLane and kSingleOriginLane; Embree's when `embree_timed`); `quality`
+// is null without Embree. Single rays against single rays take per round the
+// faster of our single-ray lanes (the first and kSingleOriginLane), best
+// mode against best mode the fastest of ours (the fast mode too) over the
+// faster of Embree's two.
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
                     double pixels, nlohmann::ordered_json* rec);
@@ -64,8 +65,9 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
 // with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds
 // fast_render.embree_robust, their times, their single rays against our
 // faster single-ray lane and the best mode of each against the other's (as
-// AddComparisons pairs them), per round, and per ray kind the rays exact arithmetic proves it wrong on
-// (`disagreements`: its Disagreements::ToJson against the kd-tree).
+// AddComparisons pairs them), per round, and per ray kind the rays exact
+// arithmetic proves it wrong on (`disagreements`: its
+// Disagreements::ToJson against the kd-tree).
 void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_json& disagreements,
                      nlohmann::ordered_json* rec);
 
