@@ -95,22 +95,21 @@ const Lane* FindLane(const std::vector<Lane>& lanes, const std::string& name) {
   return nullptr;
 }
 
-// Per round: the fastest of `theirs` over the fastest of `ours` (every lane
-// has a time in each of the rounds they all have).
-std::vector<double> FastestRatios(const std::vector<const Lane*>& theirs,
-                                  const std::vector<const Lane*>& ours) {
+// Per round all `lanes` have, the fastest of their render times.
+std::vector<double> FastestPerRound(const std::vector<const Lane*>& lanes) {
   size_t n = SIZE_MAX;
-  for (const std::vector<const Lane*>* side : {&theirs, &ours}) {
-    for (const Lane* l : *side) n = std::min(n, l->timed.t_r.size());
-  }
-  std::vector<double> out;
-  for (size_t i = 0; i < n; ++i) {
-    double a = INFINITY, b = INFINITY;
-    for (const Lane* l : theirs) a = std::min(a, l->timed.t_r[i]);
-    for (const Lane* l : ours) b = std::min(b, l->timed.t_r[i]);
-    out.push_back(a / b);
+  for (const Lane* l : lanes) n = std::min(n, l->timed.t_r.size());
+  std::vector<double> out(n, INFINITY);
+  for (const Lane* l : lanes) {
+    for (size_t i = 0; i < n; ++i) out[i] = std::min(out[i], l->timed.t_r[i]);
   }
   return out;
+}
+
+// Per round: the fastest of `theirs` over the fastest of `ours`.
+std::vector<double> FastestRatios(const std::vector<const Lane*>& theirs,
+                                  const std::vector<const Lane*>& ours) {
+  return PairedRatios(FastestPerRound(theirs), FastestPerRound(ours));
 }
 
 // Our single-ray modes: the kd-tree's lane (the report's rules) and, with the
