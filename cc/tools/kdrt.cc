@@ -278,7 +278,7 @@ absl::Status Run() {
     lanes.push_back({kSingleOriginLane, &kd, so});
   }
   const size_t embree_lane = lanes.size();
-  if (embree_timed) lanes.push_back({"embree", b.embree.get(), ropt});
+  if (embree_timed) lanes.push_back({kEmbreeLane, b.embree.get(), ropt});
   // Embree's packet calls on the same 4x4 blocks (rtcIntersect16 with the
   // coherent flag, rtcOccluded16): with them, Embree's best mode per round
   // is the faster of its two (#23's fair bar; record fast_render). Like the
@@ -286,7 +286,7 @@ absl::Status Run() {
   // structure the single-ray passes warmed.
   RenderOptions embree_packets = ropt;
   embree_packets.packets = true;
-  if (embree_timed && fast) lanes.push_back({"embree packets", b.embree.get(), embree_packets});
+  if (embree_timed && fast) lanes.push_back({kEmbreePacketsLane, b.embree.get(), embree_packets});
   // Embree's robust setting (embree_tracer.h EmbreeOptions::robust): its
   // lanes, after the others, warmed by its comparison pass below.
   std::unique_ptr<EmbreeTracer> robust;
@@ -297,8 +297,8 @@ absl::Status Run() {
     absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, ro);
     if (!e.ok()) return e.status();
     robust = *std::move(e);
-    lanes.push_back({"embree robust", robust.get(), ropt});
-    lanes.push_back({"embree robust packets", robust.get(), embree_packets});
+    lanes.push_back({kEmbreeRobustLane, robust.get(), ropt});
+    lanes.push_back({kEmbreeRobustPacketsLane, robust.get(), embree_packets});
   }
   progress.Phase("stats", "recording rays");
   RenderOptions rec_opt = ropt;

@@ -113,7 +113,7 @@ std::vector<double> FastestRatios(const std::vector<const Lane*>& theirs,
 }
 
 // Our single-ray modes: the kd-tree's lane (the report's rules) and, with the
-// fast mode, "kd-tree single origin" (shadow rays leaving their origin
+// fast mode, kSingleOriginLane (shadow rays leaving their origin
 // triangle untested, from the light, one ray at a time).
 std::vector<const Lane*> OurSingleLanes(const std::vector<Lane>& lanes) {
   std::vector<const Lane*> out = {&lanes.front()};
@@ -151,7 +151,7 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
     }
   }
   if (quality == nullptr) return;
-  const Lane* el = embree_timed ? FindLane(lanes, "embree") : nullptr;
+  const Lane* el = embree_timed ? FindLane(lanes, kEmbreeLane) : nullptr;
   out["embree"] = EmbreeJson(*quality, b, disagreements, el, lanes.front(), pixels);
   out["perf_ratio_kd_over_embree"] = out["embree"]["paired_ratio"];
   if (fl != nullptr && el != nullptr) {
@@ -161,7 +161,7 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
     const std::vector<double> single = FastestRatios({el}, OurSingleLanes(lanes));
     out["fast_render"]["single_paired_ratio_runs"] = single;
     out["fast_render"]["single_paired_ratio"] = Median(single);
-    if (const Lane* ep = FindLane(lanes, "embree packets")) {
+    if (const Lane* ep = FindLane(lanes, kEmbreePacketsLane)) {
       const std::vector<double> pp = PairedRatios(ep->timed.t_r, fl->timed.t_r);
       const std::vector<double> best = FastestRatios({el, ep}, OurLanes(lanes, *fl));
       Json& packets = out["fast_render"]["embree_packets"] = LaneTimes(*ep);
@@ -174,8 +174,8 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
 }
 
 void AddRobustEmbree(const std::vector<Lane>& lanes, const Json& disagreements, Json* rec) {
-  const Lane* er = FindLane(lanes, "embree robust");
-  const Lane* erp = FindLane(lanes, "embree robust packets");
+  const Lane* er = FindLane(lanes, kEmbreeRobustLane);
+  const Lane* erp = FindLane(lanes, kEmbreeRobustPacketsLane);
   const Lane* fl = FindLane(lanes, kFastLane);
   if (er == nullptr || erp == nullptr || fl == nullptr || (*rec)["fast_render"].is_null()) return;
   const std::vector<double> single = FastestRatios({er}, OurSingleLanes(lanes));

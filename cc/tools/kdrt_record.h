@@ -44,11 +44,17 @@ nlohmann::ordered_json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b,
 void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const RenderResult& r,
                        nlohmann::ordered_json* rec);
 
-// The timed lanes of the renderer's fastest mode (RenderOptions::packets and
-// skip_origin) and of our other single-ray mode, the fast mode's secondary
-// rays one ray at a time (skip_origin, no packets); both with --fast_render.
+// The timed lanes' names, which kdrt gives them and the record finds them
+// by: the renderer's fastest mode (RenderOptions::packets and skip_origin)
+// and our other single-ray mode, the fast mode's secondary rays one ray at a
+// time (skip_origin, no packets), both with --fast_render; Embree's single
+// rays and packets, at its default flags and built robust.
 inline constexpr char kFastLane[] = "kd-tree fast";
 inline constexpr char kSingleOriginLane[] = "kd-tree single origin";
+inline constexpr char kEmbreeLane[] = "embree";
+inline constexpr char kEmbreePacketsLane[] = "embree packets";
+inline constexpr char kEmbreeRobustLane[] = "embree robust";
+inline constexpr char kEmbreeRobustPacketsLane[] = "embree robust packets";
 
 // Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
 // "fast_render": lanes are the timed lanes (the kd-tree's first; with `fast`
@@ -61,7 +67,7 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
                     double pixels, nlohmann::ordered_json* rec);
 
-// With the lanes "embree robust" and "embree robust packets" (Embree built
+// With the lanes kEmbreeRobustLane and kEmbreeRobustPacketsLane (Embree built
 // with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds
 // fast_render.embree_robust, their times, their single rays against our
 // faster single-ray lane and the best mode of each against the other's (as
