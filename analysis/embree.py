@@ -266,8 +266,8 @@ def render(data):
                "over the rounds of a "
                "run of Embree's render time over ours in the same round (1 = "
                "as fast as Embree; Figure~\\ref{fig:embree-ratio} shows the "
-               "spread of the final variant's and the fast mode's). SAH-4 is our tree beyond the "
-               "report (preset \\texttt{sah-packet}: the full SAH counted per "
+               "spread of the final variant's and the fast mode's). SAH-4 is "
+               "our tree beyond the report (preset \\texttt{sah-packet}: the full SAH counted per "
                "packet of 4, $K_T = 45$, hybrid split search, clipping and pruning), "
                "its /Embree with single rays under the report's rules (the "
                "figure's circles are the faster of its two single-ray modes); "
@@ -330,9 +330,10 @@ def render_robust(data):
                "rules; shadow rays leaving their origin triangle untested and "
                "searched from the light, one ray at a time); best mode: per "
                "round the faster of each side's single rays and packets. Our "
-               "watertight test answers every ray exactly; the last two columns count the rays on which "
-               "exact arithmetic proves the robust Embree wrong (its default "
-               "flags' wrong rays are in Table~\\ref{tab:embree-rays}).")
+               "watertight test answers every ray exactly; the last two "
+               "columns count the rays on which exact arithmetic proves the "
+               "robust Embree wrong (its default flags' wrong rays are in "
+               "Table~\\ref{tab:embree-rays}).")
     return latex.booktabs(header, body, align="lrrrrrrr", caption=caption,
                           label="tab:embree-robust", size="footnotesize", groups=groups)
 
