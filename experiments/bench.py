@@ -180,12 +180,12 @@ def render_summary(records):
     for r in records:
         rows.setdefault((r["scene"], r["n_tri"], r["preset"]), {})[r["threads"]] = r
     out = ["| scene | triangles | preset | kd T_R, 1 thread | Embree T_R | kd/Embree "
-           "| paired | with mailbox | packets: kd/Embree, paired "
+           "| paired | packets: kd/Embree, paired "
            "| origin triangle untested: kd/Embree, paired "
            "| packets and origin untested: kd/Embree, kd/Embree packets, paired "
            "| kd 2-thread speed-up | Embree 2-thread speed-up | validation |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    ratios, best, paired_all, packet_all, origin_all = [], [], [], [], []
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    ratios, paired_all, packet_all, origin_all = [], [], [], []
     both_all, both_packet_all = [], []
     for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         one, two = by_t.get(1), by_t.get(2)
@@ -193,8 +193,6 @@ def render_summary(records):
             continue
         kd, emb = one["tracers"]["kd"], one["tracers"].get("embree")
         ratio = emb["T_R_median"] / kd["T_R_median"] if emb else None
-        mailbox = one["tracers"].get("kd_mailbox")
-        mb_ratio = emb["T_R_median"] / mailbox["T_R_median"] if emb and mailbox else None
         # Per round, then the median (render_bench.cc): less exposed to slow
         # stretches of the machine than the ratio of the medians.
         paired = one.get("ratio_kd_over_embree", {}).get("kd", {}).get("paired")
@@ -218,7 +216,6 @@ def render_summary(records):
             both_packet_all.append(both_packet)
         if ratio is not None:
             ratios.append(ratio)
-            best.append(max(ratio, mb_ratio or 0))
 
         def speed(name):
             if two is None or name not in two["tracers"]:
@@ -228,14 +225,13 @@ def render_summary(records):
 
         v = one["validation"]
         d = v.get("embree_disagreements") or {}
-        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d/%d "
+        out.append("| %s | %s | %s | %.4f s | %s | %s | %s | %s | %s | %s | %s | %s | %d/%d "
                    "brute-force "
                    "mismatches, %s Embree disagreements |" % (
                        scene, format(n, ","), preset, kd["T_R_median"],
                        "%.4f s" % emb["T_R_median"] if emb else "-",
                        "%.2f" % ratio if ratio is not None else "-",
                        "%.2f" % paired if paired is not None else "-",
-                       "%.2f" % mb_ratio if mb_ratio is not None else "-",
                        "%.2f" % packet if packet is not None else "-",
                        "%.2f" % origin if origin is not None else "-",
                        "%s, %s" % tuple("%.2f" % x if x is not None else "-"
@@ -244,12 +240,9 @@ def render_summary(records):
                        v["brute_force_checked"], d.get("total", "-")))
     if ratios:
         out.append("")
-        out.append("kd/Embree over %d rows: median %.2f, range %.2f to %.2f; the better "
-                   "of kd and kd with mailbox: median %.2f, range %.2f to %.2f, %d of %d "
-                   "at 0.7 or more." % (
-                       len(ratios), statistics.median(ratios), min(ratios), max(ratios),
-                       statistics.median(best), min(best), max(best),
-                       sum(b >= 0.7 for b in best), len(best)))
+        out.append("kd/Embree over %d rows: median %.2f, range %.2f to %.2f, %d at 0.7 or "
+                   "more." % (len(ratios), statistics.median(ratios), min(ratios), max(ratios),
+                              sum(r >= 0.7 for r in ratios)))
     if paired_all:
         out.append("Paired kd/Embree over %d rows: median %.2f, range %.2f to %.2f, %d at 0.7 "
                    "or more." % (len(paired_all), statistics.median(paired_all),
@@ -280,7 +273,7 @@ def render_summary(records):
 # Our single-ray modes and Embree's (render_bench.cc tracer names). The best
 # mode is the fastest of every tracer of ours ("kd...", packet modes and
 # NAME@TARGET included; env: tracers are other trees, not modes).
-SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin")
+SINGLE_MODES = ("kd", "kd_origin")
 EMBREE_SINGLE = ("embree",)
 EMBREE_ALL = ("embree", "embree_packet")
 # The same Embree with RTC_SCENE_FLAG_ROBUST (render_bench --embree_robust).
@@ -422,7 +415,7 @@ def main(argv=None):
     p.add_argument("--render_min_tris", type=int, default=50000)
     p.add_argument("--render_preset", default="sah-packet")
     p.add_argument("--render_variants",
-                   default="kd,kd_mailbox,kd_packet,kd_origin,kd_packet_origin")
+                   default="kd,kd_packet,kd_origin,kd_packet_origin")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")

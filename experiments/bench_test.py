@@ -71,7 +71,7 @@ class BenchTest(unittest.TestCase):
                                                                    "paired": 0.69}}
         text = bench.render_summary([one, rec(2, 0.1, 0.05)])
         row = text.splitlines()[2]
-        self.assertIn("| 0.50 | 0.55 | - | 0.62 | 0.66 | 0.81, 0.69 | 2.00x | 2.00x |", row)
+        self.assertIn("| 0.50 | 0.55 | 0.62 | 0.66 | 0.81, 0.69 | 2.00x | 2.00x |", row)
         self.assertIn("paired kd_packet_origin/Embree over 1 rows: median 0.81, range 0.81 to "
                       "0.81, 1 at 0.7 or more; over Embree's packets: median 0.69, range 0.69 "
                       "to 0.69, 0 at 0.7 or more.", text)

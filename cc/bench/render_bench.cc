@@ -6,8 +6,7 @@
 //       --preset clipping-pruning --threads 1,2 --repeats 5 --out out/bench/render.jsonl
 //
 // Per scene: load the mesh and its view (manifest camera and light, else
-// AutoView), build the kd-tree once (its leaf layout included,
-// cc/kdtree/leaf_layout.h) and a copy without the layout, and Embree
+// AutoView), build the kd-tree once, and Embree
 // (cc/embree/embree_tracer.h) at the given quality. Then, before any timing,
 // validation: one render with the kd-tree recording every ray; each variant and
 // Embree trace the recorded rays again (cc/render/compare.h), and a sample of
@@ -53,9 +52,7 @@
 // directory) and "timing" (method, rounds, warm-ups, seconds spent waiting for
 // the lock). The record is written with nlohmann-json.
 //
-// Variants: "kd" (leaf layout, the default traversal), "kd_index" (no leaf
-// layout: vertices read by triangle index, the traversal before the layout),
-// "kd_mailbox" (leaf layout and mailboxing, traversal.h), "kd_packet" (kd's
+// Variants: "kd" (the default traversal, traversal.h), "kd_packet" (kd's
 // tree, primary and shadow rays in packets of 4x4 pixels, RenderOptions::packets,
 // cc/kdtree/ray_packet.h), "kd_origin" (kd, with shadow and AO rays leaving
 // their origin triangle untested and searched from their end,
@@ -124,9 +121,8 @@ ABSL_FLAG(int, warmup, 1,
           "Untimed renders per tracer and thread count before the timed rounds (recorded as "
           "T_R_warmup_runs).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
-ABSL_FLAG(std::string, variants, "kd,kd_index,kd_mailbox,kd_packet,kd_origin",
-          "kd-tree variants to time: kd, kd_index, kd_mailbox, kd_packet, kd_origin, "
-          "kd_packet_origin; NAME@TARGET runs the packet kernel on that Highway target "
+ABSL_FLAG(std::string, variants, "kd,kd_packet,kd_origin,kd_packet_origin",
+          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin; NAME@TARGET runs the packet kernel on that Highway target "
           "(kd_packet_origin@AVX2; the machine's: ray_packet.h PacketKernelTargets).");
 ABSL_FLAG(std::string, envs, "",
           "Comma-separated environment files (env_file.h), each applied on top of --preset to "

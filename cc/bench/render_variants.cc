@@ -18,13 +18,7 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
   if (!tree.ok()) return tree.status();
   auto trees = std::make_unique<SceneTrees>();
   trees->tree = *std::move(tree);
-  trees->index_tree = trees->tree;
-  DropLeafLayout(&trees->index_tree);
-  TraversalOptions mailbox;
-  mailbox.mailbox = true;
   trees->kd = std::make_unique<KdTreeTracer>(trees->tree);
-  trees->kd_index = std::make_unique<KdTreeTracer>(trees->index_tree);
-  trees->kd_mailbox = std::make_unique<KdTreeTracer>(trees->tree, mailbox);
   for (const std::string& path : env_paths) {
     absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, config);
     if (!env.ok()) return env.status();
@@ -48,10 +42,6 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
     const std::string v = name.substr(0, name.find('@'));
     if (v == "kd") {
       entries.emplace_back(v, trees.kd.get());
-    } else if (v == "kd_index") {
-      entries.emplace_back(v, trees.kd_index.get());
-    } else if (v == "kd_mailbox") {
-      entries.emplace_back(v, trees.kd_mailbox.get());
     } else if (v == "kd_packet") {
       entries.emplace_back(v, trees.kd.get(), true);
     } else if (v == "kd_origin") {

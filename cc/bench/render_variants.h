@@ -19,8 +19,7 @@
 namespace kdtree {
 namespace bench {
 
-// The preset's tree (with the leaf layout), a copy without the layout, and
-// one tree per environment file (the preset with the file on top), each with
+// The preset's tree and one tree per environment file (the preset with the file on top), each with
 // its tracers. Not movable: the tracers point at the trees.
 struct SceneTrees {
   struct EnvTree {
@@ -28,8 +27,8 @@ struct SceneTrees {
     std::unique_ptr<KdTree> tree;
     std::unique_ptr<KdTreeTracer> tracer;
   };
-  KdTree tree, index_tree;
-  std::unique_ptr<KdTreeTracer> kd, kd_index, kd_mailbox;
+  KdTree tree;
+  std::unique_ptr<KdTreeTracer> kd;
   std::vector<EnvTree> envs;
 };
 
@@ -37,8 +36,8 @@ struct SceneTrees {
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths);
 
-// The entries `names` ask for ("kd", "kd_index", "kd_mailbox", "kd_packet",
-// "kd_origin", "kd_packet_origin", each optionally NAME@TARGET: the packet
+// The entries `names` ask for ("kd", "kd_packet", "kd_origin",
+// "kd_packet_origin", each optionally NAME@TARGET: the packet
 // kernel on that Highway target), then one per environment tree (with
 // `env_packets`, traced as kd_packet_origin, else as kd). Error: an unknown
 // name.

@@ -1,9 +1,10 @@
 // The running size of one kd-tree build against BuildLimits::max_bytes
 // (builder.h), shared by every builder of the tree: the fragments built in
 // parallel (parallel_build.h) and the local subtrees (builder.cc). Each node
-// and leaf is counted at the size the finished tree gives it: a node twice
-// (nodes and the leaf layout's leaf_nodes), a leaf its list (count + 1 words)
-// and its packets of four triangles (leaf_layout.h).
+// and leaf is counted at the size it has when the build holds the most: while
+// the leaves are laid out, both the lists (list_tree.h) and the finished tree
+// (leaf_layout.h) exist, so a node counts twice and a leaf its list (count + 1
+// words) and its packets of four triangles.
 #ifndef KDTREE_CC_KDTREE_BUILD_BUDGET_H_
 #define KDTREE_CC_KDTREE_BUILD_BUDGET_H_
 

@@ -18,7 +18,6 @@ namespace kdtree {
 namespace {
 
 using build_internal::Builder;
-using build_internal::ForChunks;
 
 // Depth cap: maxDepth, or 8 + 1.3 log2 N with autoDepth (config.h).
 int EffectiveMaxDepth(const Config& config, size_t n) {
@@ -55,6 +54,7 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   const auto start = std::chrono::steady_clock::now();
   KdTree tree;
   tree.config = config;
+  tree.triangles = soup.size();
   const int threads = config.build_threads == 0
                           ? tbb::this_task_arena::max_concurrency()
                           : config.build_threads;
@@ -63,14 +63,9 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
   const int max_depth = EffectiveMaxDepth(config, soup.size());
   const int parallel_depth = threads > 1 ? ParallelDepth(threads) : 0;
   absl::Status status;
-  // The arena's threads set up the triangle data and the first references,
-  // build, then lay out the leaves (leaf_layout.h).
+  // The arena's threads build the report's tree of lists (list_tree.h), then
+  // lay its leaves out as the finished tree's packets (leaf_layout.h).
   const auto build = [&] {
-    const size_t n = soup.size();
-    tree.verts.resize(soup.v.size());  // a HugeBuffer: filled here, not zeroed first
-    ForChunks(n, threads > 1, [&](size_t, size_t begin, size_t end) {
-      std::copy(soup.v.begin() + 3 * begin, soup.v.begin() + 3 * end, tree.verts.begin() + 3 * begin);
-    });
     if (UsesIndexRefs(config)) {
       status = Builder<IndexRef>(soup, config, &root, max_depth, parallel_depth, &budget)
                    .Run(threads > 1);
@@ -79,17 +74,23 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
                    .Run(threads > 1);
     }
     if (!status.ok()) return;
-    tree.bounds = root.tree.bounds;
+    ListTree lists;
     if (root.children.empty()) {
-      tree.nodes = std::move(root.tree.nodes);
-      tree.refs = std::move(root.tree.refs);
-      tree.counters = root.tree.counters;
-    } else if (!Stitch(root, &tree)) {
-      status = absl::ResourceExhaustedError("kd-tree exceeds 2^30 nodes or references");
-      return;
+      lists = std::move(root.tree);
+    } else {
+      lists.bounds = root.tree.bounds;
+      if (!Stitch(root, &lists)) {
+        status = absl::ResourceExhaustedError("kd-tree exceeds 2^30 nodes or references");
+        return;
+      }
     }
-    if (config.collapse) CollapseTree(config, &tree);
-    LayoutLeafTriangles(&tree, threads > 1);  // triangle data in leaf order, for traversal
+    root = Fragment();  // the fragments' lists, now copied into `lists`
+    if (config.collapse) CollapseTree(config, &lists);
+    tree.bounds = lists.bounds;
+    tree.counters = lists.counters;
+    if (!LayoutLeafTriangles(lists, soup.v.data(), threads > 1, &tree)) {
+      status = absl::ResourceExhaustedError("kd-tree exceeds 2^30 - 1 leaf packets");
+    }
   };
   if (threads > 1) {
     tbb::task_arena arena(threads);

@@ -31,8 +31,8 @@ namespace kdtree {
 // What a build may hold. A tree's size is not bounded by the triangle count:
 // with a deep maxDepth, triangles that straddle many split planes (a spatial
 // median on a small mesh) are referenced in exponentially many leaves. So the
-// build counts what it has made, at the size the finished tree will have
-// (nodes twice, for the leaf layout's copy; each leaf's list and its packets
+// build counts what it has made, at the size it has when the lists and the
+// finished tree are both held (nodes twice; each leaf's list and its packets
 // of four triangles, leaf_layout.h), and fails once that passes max_bytes.
 struct BuildLimits {
   uint64_t max_bytes = 0;  // 0: no limit but the 2^30 index range

@@ -1,4 +1,5 @@
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/leaf_layout.h"
 
 #include <cmath>
 #include <cstring>
@@ -21,8 +22,7 @@ void Collect(const KdTree& tree, const TriangleSoup& soup, uint32_t index, const
   const KdNode& n = tree.nodes[index];
   if (n.is_leaf()) {
     if (!box.Valid()) ++*bad_boxes;
-    for (uint32_t i = 0; i < tree.LeafCount(n); ++i) {
-      const uint32_t t = tree.LeafBegin(n)[i];
+    for (const uint32_t t : LeafTriangles(tree, n)) {
       ++(*seen)[t];
       if (!Intersect(soup.Bounds(t), box).Valid()) ++*outside;
     }
@@ -48,7 +48,6 @@ TEST(Builder, EveryTriangleSitsInALeafThatTouchesIt) {
       for (int s : seen) missing += s == 0;
       EXPECT_EQ(missing, 0) << name << ": triangles in no leaf";
       EXPECT_EQ(tree->counters.lost_planar, 0u) << name;
-      EXPECT_EQ(tree->refs[0], 0u);
     }
   }
 }
@@ -163,16 +162,11 @@ TEST(Builder, ParallelBuildWritesTheSerialTreeByteForByte) {
       c.build_threads = threads;
       const KdTree parallel = *BuildKdTree(soup, c);
       ASSERT_EQ(serial.nodes.size(), parallel.nodes.size()) << name << threads;
-      ASSERT_EQ(serial.refs.size(), parallel.refs.size()) << name << threads;
       EXPECT_TRUE(SameBytes(serial.nodes, parallel.nodes)) << name << threads;
-      EXPECT_TRUE(SameBytes(serial.refs, parallel.refs)) << name << threads;
-      // The triangle data and the root box, set up in parallel chunks.
-      EXPECT_TRUE(SameBytes(serial.verts, parallel.verts)) << name << threads;
+      // The root box, set up in parallel chunks.
       EXPECT_EQ(std::memcmp(&serial.bounds, &parallel.bounds, sizeof(AABB)), 0) << name << threads;
-      // The leaf layout, filled in parallel too.
-      ASSERT_EQ(serial.leaf_nodes.size(), parallel.leaf_nodes.size()) << name << threads;
+      // The leaf packets, filled in parallel too.
       ASSERT_EQ(serial.leaf_soa.size(), parallel.leaf_soa.size()) << name << threads;
-      EXPECT_TRUE(SameBytes(serial.leaf_nodes, parallel.leaf_nodes)) << name << threads;
       EXPECT_TRUE(SameBytes(serial.leaf_soa, parallel.leaf_soa)) << name << threads;
       EXPECT_EQ(TreeFingerprint(serial), TreeFingerprint(parallel)) << name << threads;
       EXPECT_EQ(serial.counters.clipped, parallel.counters.clipped) << name << threads;
@@ -196,7 +190,7 @@ TEST(Builder, LocalSubtreesWriteTheSameTree) {
       c.build_threads = threads;
       const KdTree parallel = *BuildKdTree(soup, c);
       EXPECT_TRUE(SameBytes(serial.nodes, parallel.nodes)) << name << threads;
-      EXPECT_TRUE(SameBytes(serial.refs, parallel.refs)) << name << threads;
+      EXPECT_TRUE(SameBytes(serial.leaf_soa, parallel.leaf_soa)) << name << threads;
       EXPECT_EQ(serial.counters.pruned(), parallel.counters.pruned()) << name << threads;
     }
   }
@@ -261,8 +255,8 @@ TEST(Builder, CollapseRemovesSplitsThatDoNotPayOffAndEmptySiblings) {
     if (n.is_leaf()) continue;
     const KdNode& l = collapsed.nodes[i + 1];
     const KdNode& r = collapsed.nodes[n.index()];
-    empty_pairs += l.is_leaf() && r.is_leaf() && collapsed.LeafCount(l) == 0 &&
-                   collapsed.LeafCount(r) == 0;
+    empty_pairs += l.is_leaf() && r.is_leaf() && LeafTriangleCount(collapsed, l) == 0 &&
+                   LeafTriangleCount(collapsed, r) == 0;
   }
   EXPECT_EQ(empty_pairs, 0);
 }
@@ -287,8 +281,7 @@ int MissingLeafRefs(const KdTree& tree, const TriangleSoup& soup, uint32_t index
            MissingLeafRefs(tree, soup, n.index(), box.RightOf(n.axis(), n.split));
   }
   int missing = 0;
-  for (uint32_t i = 0; i < tree.LeafCount(n); ++i) {
-    const uint32_t t = tree.LeafBegin(n)[i];
+  for (const uint32_t t : LeafTriangles(tree, n)) {
     missing += !TriangleOverlapsBoxConservative(soup.a(t), soup.b(t), soup.c(t), box);
   }
   return missing;
@@ -313,7 +306,8 @@ TEST(Builder, EmptySceneIsOneEmptyLeaf) {
   ASSERT_TRUE(t.ok());
   ASSERT_EQ(t->nodes.size(), 1u);
   EXPECT_TRUE(t->nodes[0].is_leaf());
-  EXPECT_EQ(t->LeafCount(t->nodes[0]), 0u);
+  EXPECT_EQ(LeafTriangleCount(*t, t->nodes[0]), 0u);
+  EXPECT_TRUE(t->leaf_soa.empty());
 }
 
 }  // namespace

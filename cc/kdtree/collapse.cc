@@ -11,7 +11,7 @@ namespace {
 
 class Collapser {
  public:
-  Collapser(const Config& config, const KdTree& tree)
+  Collapser(const Config& config, const ListTree& tree)
       : config_(config), tree_(tree), collapse_(tree.nodes.size(), 0) {}
 
   struct Info {
@@ -95,14 +95,14 @@ class Collapser {
   }
 
   const Config& config_;
-  const KdTree& tree_;
+  const ListTree& tree_;
   std::vector<char> collapse_;
   uint64_t removed_ = 0;
 };
 
 }  // namespace
 
-uint64_t CollapseTree(const Config& config, KdTree* tree) {
+uint64_t CollapseTree(const Config& config, ListTree* tree) {
   if (tree->nodes.empty()) return 0;
   Collapser c(config, *tree);
   c.Analyze(0, tree->bounds);

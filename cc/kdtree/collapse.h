@@ -19,7 +19,7 @@
 #include <cstdint>
 
 #include "cc/kdtree/config.h"
-#include "cc/kdtree/tree.h"
+#include "cc/kdtree/list_tree.h"
 
 namespace kdtree {
 
@@ -27,7 +27,7 @@ inline constexpr uint32_t kMaxCollapsedLeaf = 64;
 
 // Rewrites tree->nodes and tree->refs (depth-first order kept); returns the
 // number of inner nodes removed.
-uint64_t CollapseTree(const Config& config, KdTree* tree);
+uint64_t CollapseTree(const Config& config, ListTree* tree);
 
 }  // namespace kdtree
 

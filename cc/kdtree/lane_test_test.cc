@@ -11,7 +11,9 @@
 // edge functions sum to zero; so the vector path's near-zero area check,
 // which mirrors Finish's, sends no lane of these to the scalar test.) The
 // fast test's lanes (lane_fast_test-inl.h) get the same cases.
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,6 +26,9 @@
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
 #include "gtest/gtest.h"
+#include "hwy/highway.h"
+// The build's static target, as traversal.cc includes it.
+#include "cc/kdtree/lane_fast_test-inl.h"
 
 namespace kdtree {
 namespace {
@@ -160,34 +165,63 @@ TEST(LaneTest, EveryBranchOnEveryKernelWidth) {
   }
 }
 
-// The fast test in vectors (lane_fast_test-inl.h) on the same hard cases:
-// rays exactly through shared vertices and edges (u, v at 0 or u + v at 1,
-// inclusive), ties, zero-area triangles, rays leaving the surface. On the
-// leaf packets it must answer as the scalar test by index does, bit for bit.
-TEST(LaneTest, FastTestOnThePacketsEqualsItByIndex) {
+// The fast test in vectors (lane_fast_test-inl.h, the build's static target,
+// as traversal.cc compiles it) on the same hard cases: rays exactly through
+// shared vertices and edges (u, v at 0 or u + v at 1, inclusive), ties,
+// zero-area triangles, rays leaving the surface. Every lane must be the
+// scalar IntersectTriangle's verdict and t, u, v, bit for bit, for each
+// triangle against each ray. (Traversals in the fast mode are checked
+// against brute force in traversal_test.)
+TEST(LaneTest, FastLanesAreTheScalarFastTest) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  namespace lane = packet_internal::HWY_NAMESPACE;
+  using D = hn::CappedTag<float, kPacketLanes>;
+  const D d;
+  const size_t n = hn::Lanes(d);
+  ASSERT_GE(n, 1u);
   const TriangleSoup soup = Grid(14);
   const std::vector<Ray> rays = Rays(soup, 7);
-  const TraversalOptions fast = WithTest(IntersectionMode::kFast);
-  TraversalOptions fast_end = fast;
-  fast_end.from_end = true;
-  for (const char* preset : {"sah-packet", "clipping-pruning"}) {
-    absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset(preset));
-    ASSERT_TRUE(tree.ok()) << tree.status();
-    ASSERT_TRUE(HasLeafLayout(*tree));
-    KdTree plain = *tree;
-    DropLeafLayout(&plain);
-    size_t closest = 0, any = 0, hits = 0;
-    for (const Ray& ray : rays) {
-      const Hit want = Intersect(plain, ray, fast);
-      closest += !BitwiseSameHit(Intersect(*tree, ray, fast), want);
-      any += Occluded(*tree, ray, fast) != want.hit();
-      any += Occluded(*tree, ray, fast_end) != want.hit();
-      hits += want.hit();
+  size_t tests = 0, hits = 0, differ = 0;
+  for (const Ray& ray : rays) {
+    const lane::RayLanes<D> r(d, ray);
+    for (size_t first = 0; first < soup.size(); first += n) {
+      HWY_ALIGN float x[3][kPacketLanes], y[3][kPacketLanes], z[3][kPacketLanes];
+      for (size_t l = 0; l < n; ++l) {
+        const size_t tri = std::min(first + l, soup.size() - 1);
+        for (int v = 0; v < 3; ++v) {
+          x[v][l] = soup.v[3 * tri + v].x;
+          y[v][l] = soup.v[3 * tri + v].y;
+          z[v][l] = soup.v[3 * tri + v].z;
+        }
+      }
+      lane::LaneTriangle<D> t;
+      for (int v = 0; v < 3; ++v) {
+        t.x[v] = hn::Load(d, x[v]);
+        t.y[v] = hn::Load(d, y[v]);
+        t.z[v] = hn::Load(d, z[v]);
+      }
+      lane::LaneHits lh;
+      lane::FastLanes(d, r, t, ray.tmin, ray.tmax, (1u << n) - 1, &lh);
+      EXPECT_EQ(lh.scalar, 0u);
+      for (size_t l = 0; l < n && first + l < soup.size(); ++l) {
+        const size_t tri = first + l;
+        const Vec3* p = &soup.v[3 * tri];
+        float tt = 0, uu = 0, vv = 0;
+        const bool want =
+            IntersectTriangle(ray, MakeTriAccel(p[0], p[1], p[2]), ray.tmin, ray.tmax, &tt, &uu, &vv);
+        const bool got = (lh.hit >> l) & 1;
+        ++tests;
+        hits += want;
+        const auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof(a)) == 0; };
+        if (got != want ||
+            (want && !(same(lh.t[l], tt) && same(lh.u[l], uu) && same(lh.v[l], vv)))) {
+          ++differ;
+        }
+      }
     }
-    EXPECT_EQ(closest, 0u) << preset;
-    EXPECT_EQ(any, 0u) << preset;
-    EXPECT_GT(hits, rays.size() / 3) << preset;
   }
+  EXPECT_EQ(differ, 0u) << "of " << tests;
+  EXPECT_GT(hits, rays.size() / 3);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <cstring>
 #include <vector>
 
 #include "tbb/blocked_range.h"
@@ -25,14 +26,14 @@ uint32_t PacketsOf(uint32_t count) { return (count + kPacketLanes - 1) / kPacket
 // of megabytes on the large scenes) are written whole and not read back by
 // the build, so they bypass the caches and skip the read of each line before
 // it is written (the caller fences).
-void WriteLeaf(const KdTree& tree, const KdNode& node, float* out) {
+void WriteLeaf(const ListTree& tree, const Vec3* vertices, const KdNode& node, float* out) {
   static_assert(kPacketLanes == 4 && kPacketIds == 36, "the transpose below is 4 x 9");
   static_assert(sizeof(Vec3) == 3 * sizeof(float), "a triangle is 9 packed floats");
   const uint32_t count = tree.LeafCount(node);
   const uint32_t* tris = tree.LeafBegin(node);
   const uint32_t packets = PacketsOf(count);
   static const float kZero[9] = {};
-  const float* verts = reinterpret_cast<const float*>(tree.verts.data());
+  const float* verts = reinterpret_cast<const float*>(vertices);
   for (uint32_t j = 0; j < packets; ++j, out += kPacketFloats) {
     const float* row[kPacketLanes];
     alignas(16) uint32_t id[kPacketLanes];
@@ -73,51 +74,81 @@ void ForChunks(size_t chunks, bool parallel, const Body& body) {
 
 }  // namespace
 
-void DropLeafLayout(KdTree* tree) {
-  HugeBuffer<float>().swap(tree->leaf_soa);
-  HugeBuffer<KdNode>().swap(tree->leaf_nodes);
-}
-
-void LayoutLeafTriangles(KdTree* tree, bool parallel) {
-  DropLeafLayout(tree);
-  if (tree->verts.empty() || tree->nodes.empty()) return;
+bool LayoutLeafTriangles(const ListTree& lists, const Vec3* verts, bool parallel, KdTree* out) {
+  HugeBuffer<KdNode>().swap(out->nodes);
+  HugeBuffer<float>().swap(out->leaf_soa);
+  if (lists.nodes.empty()) return true;
   // Packets per chunk of nodes, then each chunk's first packet (node order:
   // any packing of the refs lists, shared lists included, is covered).
-  const size_t n = tree->nodes.size();
+  const size_t n = lists.nodes.size();
   const size_t chunks = (n + kChunkNodes - 1) / kChunkNodes;
   std::vector<size_t> first(chunks + 1, 0);
   ForChunks(chunks, parallel, [&](size_t c) {
     size_t packets = 0;
     for (size_t i = c * kChunkNodes, end = std::min(n, i + kChunkNodes); i < end; ++i) {
-      const KdNode& node = tree->nodes[i];
-      if (node.is_leaf()) packets += PacketsOf(tree->LeafCount(node));
+      const KdNode& node = lists.nodes[i];
+      if (node.is_leaf()) packets += PacketsOf(lists.LeafCount(node));
     }
     first[c + 1] = packets;
   });
   for (size_t c = 0; c < chunks; ++c) first[c + 1] += first[c];
-  if (first[chunks] >= kEmptyLeaf) return;
+  if (first[chunks] >= kEmptyLeaf) return false;
   // Every word is written below: no zeroing pass first (HugeBuffer).
-  tree->leaf_soa.resize(first[chunks] * kPacketFloats);
-  tree->leaf_nodes.resize(n);
+  out->leaf_soa.resize(first[chunks] * kPacketFloats);
+  out->nodes.resize(n);
   ForChunks(chunks, parallel, [&](size_t c) {
     size_t next = first[c];
     for (size_t i = c * kChunkNodes, end = std::min(n, i + kChunkNodes); i < end; ++i) {
-      const KdNode& node = tree->nodes[i];
+      const KdNode& node = lists.nodes[i];
       if (!node.is_leaf()) {
-        tree->leaf_nodes[i] = node;
+        out->nodes[i] = node;
         continue;
       }
-      const uint32_t count = tree->LeafCount(node);
+      const uint32_t count = lists.LeafCount(node);
       if (count == 0) {
-        tree->leaf_nodes[i] = KdNode::Leaf(kEmptyLeaf);
+        out->nodes[i] = KdNode::Leaf(kEmptyLeaf);
         continue;
       }
-      tree->leaf_nodes[i] = KdNode::Leaf(static_cast<uint32_t>(next));
-      WriteLeaf(*tree, node, tree->leaf_soa.data() + next * kPacketFloats);
+      out->nodes[i] = KdNode::Leaf(static_cast<uint32_t>(next));
+      WriteLeaf(lists, verts, node, out->leaf_soa.data() + next * kPacketFloats);
       next += PacketsOf(count);
     }
     _mm_sfence();  // the streaming stores of WriteLeaf are seen before the chunk ends
   });
+  return true;
+}
+
+namespace {
+
+// Calls f(triangle) for each triangle of the leaf, in list order.
+template <class F>
+void ForEachLeafTriangle(const KdTree& tree, const KdNode& leaf, const F& f) {
+  if (leaf.index() == kEmptyLeaf) return;
+  for (const float* packet = tree.leaf_soa.data() + size_t{leaf.index()} * kPacketFloats;;
+       packet += kPacketFloats) {
+    uint32_t id[kPacketLanes];
+    std::memcpy(id, packet + kPacketIds, sizeof(id));
+    const bool last = (id[0] & kLastPacket) != 0;
+    id[0] &= ~kLastPacket;
+    for (uint32_t t : id) {
+      if (t != kPadLane) f(t);  // pads only follow a leaf's last triangle
+    }
+    if (last) return;
+  }
+}
+
+}  // namespace
+
+std::vector<uint32_t> LeafTriangles(const KdTree& tree, const KdNode& leaf) {
+  std::vector<uint32_t> tris;
+  ForEachLeafTriangle(tree, leaf, [&](uint32_t t) { tris.push_back(t); });
+  return tris;
+}
+
+uint32_t LeafTriangleCount(const KdTree& tree, const KdNode& leaf) {
+  uint32_t count = 0;
+  ForEachLeafTriangle(tree, leaf, [&](uint32_t) { ++count; });
+  return count;
 }
 
 }  // namespace kdtree

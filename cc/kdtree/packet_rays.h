@@ -120,7 +120,7 @@ uint32_t SetUpLanes(const AABB& box, PacketRays* p);
 // (TraversalOptions::from_end).
 enum class Search { kClosest, kAny, kAnyFromEnd };
 
-// Traces the group's lanes through tree (which has the leaf layout) and
+// Traces the group's lanes through tree and
 // writes best[i] for each (closest hit, or for an any-hit search the first
 // hit found; best[i].t must hold ray i's tmax on entry); best has kLanes
 // entries. Chosen at run time for the CPU (Highway's dynamic dispatch:

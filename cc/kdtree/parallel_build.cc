@@ -53,7 +53,7 @@ void Size(const Fragment& f, Sized* out) {
 // task of its own meanwhile (its size is known: Size).
 class Stitcher {
  public:
-  Stitcher(KdTree* out, std::atomic<bool>* overflow) : out_(out), overflow_(overflow) {}
+  Stitcher(ListTree* out, std::atomic<bool>* overflow) : out_(out), overflow_(overflow) {}
 
   void Run(const Sized& s, size_t node_at, size_t ref_at) {
     node_at_ = node_at;
@@ -73,7 +73,7 @@ class Stitcher {
     if (next_child_ < f.children.size() && f.children[next_child_].first == i) {
       const Sized& kid = sized_->kids[next_child_++];
       const size_t node_at = node_at_, ref_at = ref_at_;
-      KdTree* out = out_;
+      ListTree* out = out_;
       std::atomic<bool>* overflow = overflow_;
       group_->run([&kid, node_at, ref_at, out, overflow] {
         Stitcher(out, overflow).Run(kid, node_at, ref_at);
@@ -104,7 +104,7 @@ class Stitcher {
     Emit(f, n.index());
   }
 
-  KdTree* out_;
+  ListTree* out_;
   std::atomic<bool>* overflow_;
   const Sized* sized_ = nullptr;
   tbb::task_group* group_ = nullptr;
@@ -124,7 +124,7 @@ void AddCounters(const Fragment& f, BuildCounters* c) {
 
 }  // namespace
 
-bool Stitch(const Fragment& root, KdTree* out) {
+bool Stitch(const Fragment& root, ListTree* out) {
   out->counters = BuildCounters();
   AddCounters(root, &out->counters);
   Sized sized;

@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "cc/kdtree/tree.h"
+#include "cc/kdtree/list_tree.h"
 
 namespace kdtree {
 
@@ -41,7 +41,7 @@ int ParallelDepth(int threads);
 // empty list. `children` are the fragments hanging under its placeholder
 // nodes (local node index, fragment), in increasing node order.
 struct Fragment {
-  KdTree tree;
+  ListTree tree;
   std::vector<std::pair<uint32_t, std::unique_ptr<Fragment>>> children;
 };
 
@@ -49,7 +49,7 @@ struct Fragment {
 // and out->refs (replacing them) and adds every fragment's counters into
 // out->counters (peak_build_refs: the largest). Returns false when an index
 // would exceed KdNode::kMaxIndex.
-bool Stitch(const Fragment& root, KdTree* out);
+bool Stitch(const Fragment& root, ListTree* out);
 
 }  // namespace kdtree
 

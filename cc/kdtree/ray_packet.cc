@@ -20,8 +20,8 @@ using packet_internal::SetUpLanes;
 static_assert(packet_internal::kLanes == kRayPacketSize, "one packet, one PacketRays");
 
 bool TreeSupportsPackets(const KdTree& tree, const TraversalOptions& options) {
-  return options.mode == IntersectionMode::kWatertight && !options.mailbox &&
-         HasLeafLayout(tree) && !tree.nodes.empty() && tree.bounds.Valid();
+  return options.mode == IntersectionMode::kWatertight && !tree.nodes.empty() &&
+         tree.bounds.Valid();
 }
 
 // The ray's components in lane i.

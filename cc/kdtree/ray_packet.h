@@ -29,9 +29,8 @@
 // (ray_packet_test.cc checks this, and brute force, on random, coherent and
 // adversarial packets, on every kernel width the machine runs).
 //
-// Falls back to one ray at a time when the packet path does not apply: a tree
-// without the leaf layout (leaf_layout.h), the fast intersection mode or
-// mailboxing.
+// Falls back to one ray at a time when the packet path does not apply: the
+// fast intersection mode, or an empty tree.
 #ifndef KDTREE_CC_KDTREE_RAY_PACKET_H_
 #define KDTREE_CC_KDTREE_RAY_PACKET_H_
 

@@ -151,7 +151,7 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
   // Each lane's best t so far: its ray's tmax, as best[i].t holds on entry.
   HWY_ALIGN float best_t[kLanes];
   for (int v = 0; v < kV; ++v) hn::Store(hn::Load(d, p.tmax + v * n), d, best_t + v * n);
-  const KdNode* nodes = tree.leaf_nodes.data();
+  const KdNode* nodes = tree.nodes.data();
   Stack stack;
   int top = 0;
   uint32_t found = 0, index = 0;

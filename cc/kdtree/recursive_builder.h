@@ -349,7 +349,7 @@ class Builder {
   const TriangleSoup& soup_;
   const Config& config_;
   Fragment* fragment_;
-  KdTree* tree_;
+  ListTree* tree_;
   RefPoolOf<Ref> own_pool_;
   RefPoolOf<Ref>* pool_ = &own_pool_;  // a local builder's is its parent's
   size_t left_count_ = 0;

@@ -5,6 +5,7 @@
 
 #include "cc/base/fnv.h"
 #include "cc/kdtree/build_ref.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "nlohmann/json.hpp"
 
 namespace kdtree {
@@ -20,7 +21,7 @@ struct Walker {
     const KdNode& node = tree.nodes[index];
     const double rel = root_area > 0 ? box.SurfaceArea() / root_area : 0.0;
     if (node.is_leaf()) {
-      const uint32_t count = tree.LeafCount(node);
+      const uint32_t count = LeafTriangleCount(tree, node);
       ++s->leaves;
       if (count == 0) ++s->empty_leaves;
       s->leaf_refs += count;
@@ -53,10 +54,7 @@ TreeStats ComputeStats(const KdTree& tree) {
   s.mem_report_mb = (8.0 * (s.inner + s.leaves) + 4.0 * (s.leaf_refs + s.leaves - s.empty_leaves) +
                      8.0 * tree.num_triangles()) /
                     (1024.0 * 1024.0);
-  s.tree_bytes = tree.nodes.size() * sizeof(KdNode) + tree.refs.size() * sizeof(uint32_t) +
-                 tree.verts.size() * sizeof(Vec3) +
-                 tree.leaf_soa.size() * sizeof(float) +
-                 tree.leaf_nodes.size() * sizeof(KdNode);
+  s.tree_bytes = tree.nodes.size() * sizeof(KdNode) + tree.leaf_soa.size() * sizeof(float);
   s.build_peak_bytes = tree.counters.peak_build_bytes;
   return s;
 }
@@ -76,7 +74,6 @@ struct Fnv1a {
 uint64_t TreeFingerprint(const KdTree& tree) {
   Fnv1a f;
   f.Add(tree.nodes.data(), tree.nodes.size() * sizeof(KdNode));
-  f.Add(tree.refs.data(), tree.refs.size() * sizeof(uint32_t));
   f.Add(tree.leaf_soa.data(), tree.leaf_soa.size() * sizeof(float));
   const uint64_t counters[] = {tree.counters.clipped, tree.counters.pruned_box,
                                tree.counters.pruned_leaf, tree.counters.lost_planar};

@@ -33,8 +33,8 @@ struct TreeStats {
   // mem as the report computes it (MB of 2^20 bytes; fits every row 18 entry):
   // [8 (N_I + N_L) + 4 (N_TP + N_L - N_empty) + 8 N_tri] / 2^20.
   double mem_report_mb = 0;
-  // Bytes of the traversable tree: nodes, leaf lists, per-triangle data
-  // (the vertices) and, when built, the leaf-order packets.
+  // Bytes of the traversable tree: its nodes and leaf packets (tree.h), all
+  // a traversal reads.
   uint64_t tree_bytes = 0;
   // Peak bytes of build references (clipped boxes included) during the build,
   // with the box array of an index build (build_ref.h).
@@ -53,10 +53,13 @@ TreeStats ComputeStats(const KdTree& tree);
 // in this order (kdrt's and build_bench's records).
 nlohmann::ordered_json StatsToJson(const TreeStats& s);
 
-// FNV-1a (64 bits, over 64-bit words) of the tree: nodes (split bits and index bits),
-// reference lists, leaf-order packets and build counters. Two builds have the
-// same fingerprint when they wrote the same tree; benchmarks use it to check
-// that a faster builder still writes the tree it wrote before.
+// FNV-1a (64 bits, over 64-bit words) of the tree: nodes (split bits and index
+// bits), leaf packets (vertices and triangle indices) and build counters. Two
+// builds have the same fingerprint when they wrote the same tree; benchmarks
+// use it to check that a faster builder still writes the tree it wrote
+// before. (Until 2026-12 the tree also held the report's reference lists and
+// a second node array, which the fingerprint hashed: fingerprints recorded
+// before then are not comparable with today's.)
 uint64_t TreeFingerprint(const KdTree& tree);
 
 }  // namespace kdtree

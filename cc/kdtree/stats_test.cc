@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "gtest/gtest.h"
 #include "nlohmann/json.hpp"
 
@@ -51,16 +52,15 @@ TEST(Stats, HandCountedTree) {
   EXPECT_NEAR(s.sah_cost, 1540.0 / 34.0, 1e-9);
   EXPECT_EQ(s.clipped, 0u);
   EXPECT_EQ(s.pruned, 0u);
-  // 5 nodes * 8 + refs (shared 0 + 3 lists of 2) * 4 + 9 vertices * 12 + 3
-  // leaves of one 4-wide packet (36 floats and 4 indices) * 4 bytes + the
-  // traversal's copy of the 5 nodes * 8.
-  EXPECT_EQ(s.tree_bytes, 5u * 8 + 7u * 4 + 9u * 12 + 3u * 40 * 4 + 5u * 8);
+  // 5 nodes * 8 + 3 leaves of one 4-wide packet (36 floats and 4 indices) *
+  // 4 bytes: the whole tree (no lists, no vertices by index).
+  EXPECT_EQ(s.tree_bytes, 5u * 8 + 3u * 40 * 4);
   EXPECT_EQ(tree->nodes[0].axis(), 0);
   EXPECT_FLOAT_EQ(tree->nodes[0].split, 4.0f);
   EXPECT_EQ(tree->nodes[0].index(), 4u);  // right child after the 3-node left subtree
 }
 
-TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
+TEST(Stats, EmptyLeavesHoldNoPacketAndAreCounted) {
   // Two triangles at both ends: median splits leave empty cells between them.
   TriangleSoup soup;
   soup.Add({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
@@ -76,7 +76,10 @@ TEST(Stats, EmptyLeavesShareOneCountAndAreCounted) {
   EXPECT_EQ(s.empty_leaves, 2u);
   EXPECT_DOUBLE_EQ(s.empty_ratio, 0.5);
   EXPECT_EQ(s.leaf_refs, 3u);
-  EXPECT_EQ(tree.refs.size(), 1u + 2u + 3u);  // shared zero, {T0}, {T1, T2}
+  EXPECT_EQ(tree.leaf_soa.size(), 2u * kPacketFloats);  // {T0}, {T1, T2}
+  int empty = 0;
+  for (const KdNode& n : tree.nodes) empty += n.is_leaf() && n.index() == kEmptyLeaf;
+  EXPECT_EQ(empty, 2);
   EXPECT_EQ(s.max_depth, 3);
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "cc/geometry/intersect.h"
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
@@ -71,21 +70,6 @@ HWY_INLINE hn::Vec<DU> StepIds(DU du, const float* p0, const float* p1) {
   }
 }
 
-// The lanes of `live` whose triangle (id[l]) the mailbox has not seen; each
-// is entered, in lane order.
-int Unmailboxed(int live, const uint32_t* id, uint32_t* mailbox) {
-  for (int m = live; m != 0; m &= m - 1) {
-    const int l = __builtin_ctz(m);
-    uint32_t& slot = mailbox[id[l] & (kMailboxSlots - 1)];
-    if (slot == id[l]) {
-      live &= ~(1 << l);
-    } else {
-      slot = id[l];
-    }
-  }
-  return live;
-}
-
 struct StackEntry {
   uint32_t node;
   float t_entry, t_exit;
@@ -94,13 +78,12 @@ struct StackEntry {
 // The single-ray traversal: set-up, then a loop of three parts (the descent
 // to a leaf, the leaf's triangles, the pop of the next node). Longer than the
 // project's 80 lines on purpose: the three parts share the ray's set-up, the
-// interval, the stack, the mailbox and the best hit, a dozen values the loop
+// interval, the stack and the best hit, a dozen values the loop
 // keeps in registers; as separate functions they would take them by
 // reference, which keeps them in memory unless every call is inlined. The
 // packet kernel's TraceLanes (ray_packet_kernel.cc) is one function for the
 // same reason.
-template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kLeafOrdered, bool kMailbox,
-          bool kFromEnd>
+template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kFromEnd>
 Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
              TraversalCounters* counters) {
   Hit best;
@@ -138,19 +121,12 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   // (kNoHit matches no lane: the ids are stored without kLastPacket's bit).
   if (kMode != IntersectionMode::kWatertight) origin_tri = kNoHit;
   const hn::Vec<DU> skip_id = hn::Set(du, origin_tri);
-  uint32_t mailbox[kMailboxSlots];
-  if (kMailbox) {
-    for (int i = 0; i < kMailboxSlots; ++i) mailbox[i] = kNoHit;
-  }
   StackEntry stack[kMaxTraversalStack];
   int top = 0;
-  // With the leaf layout, leaf_nodes: the same inner nodes, leaves pointing at
-  // their packets (leaf_layout.h).
-  const KdNode* nodes = kLeafOrdered ? tree.leaf_nodes.data() : tree.nodes.data();
-  const uint32_t* refs = tree.refs.data();
-  const Vec3* verts = tree.verts.data();
-  const float* soa = kLeafOrdered ? tree.leaf_soa.data() : nullptr;
-  const float* soa_end = kLeafOrdered ? soa + tree.leaf_soa.size() : nullptr;
+  // The nodes; a leaf points at its packets (leaf_layout.h).
+  const KdNode* nodes = tree.nodes.data();
+  const float* soa = tree.leaf_soa.data();
+  const float* soa_end = soa + tree.leaf_soa.size();
   uint32_t index = 0;
   for (;;) {
     const KdNode* node = &nodes[index];
@@ -199,122 +175,84 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
       node = &nodes[index];
     }
     if (kCount) ++counters->leaf_visits;
-    if (kLeafOrdered) {
-      const uint32_t first = node->index();
-      const float* packet =
-          first == kEmptyLeaf ? nullptr : soa + static_cast<size_t>(first) * kPacketFloats;
-      while (packet != nullptr) {
-        // This step's packets: `packet` and, when a step takes two, the next
-        // one in memory, whose lanes are masked off when `packet` ends the
-        // leaf (`only`). Its address does not wait for `packet`'s ids, so
-        // the two packets' cache lines are requested at once; choosing it by
-        // the ids (a conditional move) made every second packet wait for the
-        // first one's last line. render_bench, sah-packet, Embree's single
-        // rays over kd_origin, 6 processes each, old and new alternated:
-        // hairball-1m 0.53-0.58 -> 0.58-0.63; bunny, city, rungholt-1m,
-        // courtyard-1m, fforest and hairball-small within noise.
-        const float* next = packet + kPacketFloats;
-        const float* second = kStepPackets == 1 || next == soa_end ? packet : next;
-        uint32_t first_id;
-        std::memcpy(&first_id, packet + kPacketIds, sizeof(first_id));
-        const bool ends = (first_id & kLastPacket) != 0;  // `packet` ends the leaf
-        const bool only = kStepPackets == 1 || ends;
-        const hn::Vec<DU> ids = StepIds(du, packet, second);
-        const hn::Vec<DU> clean_ids = hn::And(ids, hn::Set(du, ~kLastPacket));
-        HWY_ALIGN uint32_t id[kStepPackets * kPacketLanes];
-        hn::Store(clean_ids, du, id);
-        // Lanes holding a triangle (not kPadLane) of this leaf.
-        int live = static_cast<int>(~lane::Bits(du, hn::Eq(ids, hn::Set(du, kPadLane))) &
-                                    (only ? (1u << kPacketLanes) - 1 : kStepLanes));
-        uint32_t last_id;
-        std::memcpy(&last_id, second + kPacketIds, sizeof(last_id));
-        const bool last = ends || (last_id & kLastPacket) != 0;
-        // Counting: the mailbox is checked before the test, so N_IT counts
-        // the references really tested.
-        if (kMailbox && kCount) live = Unmailboxed(live, id, mailbox);
-        live &= ~static_cast<int>(lane::Bits(du, hn::Eq(clean_ids, skip_id)));
-        if (kCount) counters->triangle_tests += __builtin_popcount(live);
-        // The packet kernel's per-lane test (lane_test-inl.h) with the
-        // packets' triangles in the lanes: the rejection, then the rest of
-        // the test in vectors for the lanes with decided signs (bit for bit
-        // the scalar test's t, u, v), the scalar test for the others; or the
-        // fast test in vectors (lane_fast_test-inl.h). All lanes are tested
-        // against the same best.t; Closer then drops a hit beyond one an
-        // earlier lane found, as the scalar test with that lane's t as tmax
-        // would have.
-        const lane::LaneTriangle<DL> step = StepTriangles(dl, axes, packet, second);
-        lane::LaneShear<DL> s;  // the watertight test's
-        if (kMode == IntersectionMode::kWatertight) {
-          s = lane::ShearLanes(dl, frames, step);
-          live &= ~static_cast<int>(lane::RejectRays(dl, frames, s, behind ? kStepLanes : 0u));
-        }
-        // Fast path: the watertight rejection costs the same with or without
-        // a lane, so only the rest of the test is mailboxed.
-        if (kMailbox && !kCount) live = Unmailboxed(live, id, mailbox);
-        lane::LaneHits lh;
-        if (live != 0 && kMode == IntersectionMode::kWatertight) {
-          HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
-          for (float& t : tmax) t = best.t;
-          lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
-        } else if (live != 0) {
-          lane::FastLanes(dl, ray_lanes, step, ray.tmin, best.t, static_cast<uint32_t>(live), &lh);
-        }
-        for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
-          const int l = __builtin_ctz(m);
-          float t, u, v;
-          bool hit;
-          if ((lh.hit >> l) & 1) {
-            t = lh.t[l];
-            u = lh.u[l];
-            v = lh.v[l];
-            hit = true;
-          } else {
-            Vec3 a, b, c;
-            PacketTriangle(l < kPacketLanes ? packet : second, l % kPacketLanes, &a, &b, &c);
-            hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
-          }
-          // Any hit: best holds no hit yet (the first one returns), and a
-          // hit with t <= best.t = tmax is always Closer.
-          if (hit && (kAnyHit || Closer(t, id[l], best))) {
-            best.tri = id[l];
-            best.t = t;
-            best.u = u;
-            best.v = v;
-            if (kAnyHit) return best;
-          }
-        }
-        packet = last ? nullptr : second + kPacketFloats;
+    const uint32_t first = node->index();
+    const float* packet =
+        first == kEmptyLeaf ? nullptr : soa + static_cast<size_t>(first) * kPacketFloats;
+    while (packet != nullptr) {
+      // This step's packets: `packet` and, when a step takes two, the next
+      // one in memory, whose lanes are masked off when `packet` ends the
+      // leaf (`only`). Its address does not wait for `packet`'s ids, so
+      // the two packets' cache lines are requested at once; choosing it by
+      // the ids (a conditional move) made every second packet wait for the
+      // first one's last line. render_bench, sah-packet, Embree's single
+      // rays over kd_origin, 6 processes each, old and new alternated:
+      // hairball-1m 0.53-0.58 -> 0.58-0.63; bunny, city, rungholt-1m,
+      // courtyard-1m, fforest and hairball-small within noise.
+      const float* next = packet + kPacketFloats;
+      const float* second = kStepPackets == 1 || next == soa_end ? packet : next;
+      uint32_t first_id;
+      std::memcpy(&first_id, packet + kPacketIds, sizeof(first_id));
+      const bool ends = (first_id & kLastPacket) != 0;  // `packet` ends the leaf
+      const bool only = kStepPackets == 1 || ends;
+      const hn::Vec<DU> ids = StepIds(du, packet, second);
+      const hn::Vec<DU> clean_ids = hn::And(ids, hn::Set(du, ~kLastPacket));
+      HWY_ALIGN uint32_t id[kStepPackets * kPacketLanes];
+      hn::Store(clean_ids, du, id);
+      // Lanes holding a triangle (not kPadLane) of this leaf.
+      int live = static_cast<int>(~lane::Bits(du, hn::Eq(ids, hn::Set(du, kPadLane))) &
+                                  (only ? (1u << kPacketLanes) - 1 : kStepLanes));
+      uint32_t last_id;
+      std::memcpy(&last_id, second + kPacketIds, sizeof(last_id));
+      const bool last = ends || (last_id & kLastPacket) != 0;
+      live &= ~static_cast<int>(lane::Bits(du, hn::Eq(clean_ids, skip_id)));
+      if (kCount) counters->triangle_tests += __builtin_popcount(live);
+      // The packet kernel's per-lane test (lane_test-inl.h) with the
+      // packets' triangles in the lanes: the rejection, then the rest of
+      // the test in vectors for the lanes with decided signs (bit for bit
+      // the scalar test's t, u, v), the scalar test for the others; or the
+      // fast test in vectors (lane_fast_test-inl.h). All lanes are tested
+      // against the same best.t; Closer then drops a hit beyond one an
+      // earlier lane found, as the scalar test with that lane's t as tmax
+      // would have.
+      const lane::LaneTriangle<DL> step = StepTriangles(dl, axes, packet, second);
+      lane::LaneShear<DL> s;  // the watertight test's
+      if (kMode == IntersectionMode::kWatertight) {
+        s = lane::ShearLanes(dl, frames, step);
+        live &= ~static_cast<int>(lane::RejectRays(dl, frames, s, behind ? kStepLanes : 0u));
       }
-    } else {
-      const uint32_t list = node->index();
-      const uint32_t count = refs[list];
-      const uint32_t* tris = refs + list + 1;
-      for (uint32_t i = 0; i < count; ++i) {
-        const uint32_t tri = tris[i];
-        if (tri == origin_tri) continue;
-        if (kMailbox) {
-          uint32_t& slot = mailbox[tri & (kMailboxSlots - 1)];
-          if (slot == tri) continue;
-          slot = tri;
-        }
-        if (kCount) ++counters->triangle_tests;
+      lane::LaneHits lh;
+      if (live != 0 && kMode == IntersectionMode::kWatertight) {
+        HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
+        for (float& t : tmax) t = best.t;
+        lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
+      } else if (live != 0) {
+        lane::FastLanes(dl, ray_lanes, step, ray.tmin, best.t, static_cast<uint32_t>(live), &lh);
+      }
+      for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
+        const int l = __builtin_ctz(m);
         float t, u, v;
         bool hit;
-        const Vec3* p = verts + 3 * static_cast<size_t>(tri);
-        if (kMode == IntersectionMode::kWatertight) {
-          hit = IntersectTriangleWatertight(wray, p[0], p[1], p[2], ray.tmin, best.t, &t, &u, &v);
+        if ((lh.hit >> l) & 1) {
+          t = lh.t[l];
+          u = lh.u[l];
+          v = lh.v[l];
+          hit = true;
         } else {
-          hit = IntersectTriangle(ray, MakeTriAccel(p[0], p[1], p[2]), ray.tmin, best.t, &t, &u,
-                                  &v);
+          Vec3 a, b, c;
+          PacketTriangle(l < kPacketLanes ? packet : second, l % kPacketLanes, &a, &b, &c);
+          hit = IntersectTriangleWatertight(wray, a, b, c, ray.tmin, best.t, &t, &u, &v);
         }
-        if (hit && (kAnyHit || Closer(t, tri, best))) {
-          best.tri = tri;
+        // Any hit: best holds no hit yet (the first one returns), and a
+        // hit with t <= best.t = tmax is always Closer.
+        if (hit && (kAnyHit || Closer(t, id[l], best))) {
+          best.tri = id[l];
           best.t = t;
           best.u = u;
           best.v = v;
           if (kAnyHit) return best;
         }
       }
+      packet = last ? nullptr : second + kPacketFloats;
     }
     // Next node. A node that starts beyond the best hit (with the slack for
     // the rounding of triangle distances) cannot hold a nearer one or a tie.
@@ -333,29 +271,13 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   }
 }
 
-template <bool kAnyHit, bool kCount, IntersectionMode kMode, bool kFromEnd>
-Hit DispatchLayout(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
-                   TraversalCounters* counters) {
-  // The leaf-ordered layout is used when present and complete, by both tests.
-  const bool ordered = HasLeafLayout(tree);
-  const uint32_t o = options.origin_tri;
-  if (ordered) {
-    return options.mailbox
-               ? Traverse<kAnyHit, kCount, kMode, true, true, kFromEnd>(tree, ray, o, counters)
-               : Traverse<kAnyHit, kCount, kMode, true, false, kFromEnd>(tree, ray, o, counters);
-  }
-  return options.mailbox
-             ? Traverse<kAnyHit, kCount, kMode, false, true, kFromEnd>(tree, ray, o, counters)
-             : Traverse<kAnyHit, kCount, kMode, false, false, kFromEnd>(tree, ray, o, counters);
-}
-
 // The order matters to any-hit queries only (TraversalOptions::from_end).
 template <bool kAnyHit, bool kCount, IntersectionMode kMode>
 Hit DispatchOrder(const KdTree& tree, const Ray& ray, const TraversalOptions& options,
                   TraversalCounters* counters) {
   return kAnyHit && options.from_end
-             ? DispatchLayout<kAnyHit, kCount, kMode, kAnyHit>(tree, ray, options, counters)
-             : DispatchLayout<kAnyHit, kCount, kMode, false>(tree, ray, options, counters);
+             ? Traverse<kAnyHit, kCount, kMode, kAnyHit>(tree, ray, options.origin_tri, counters)
+             : Traverse<kAnyHit, kCount, kMode, false>(tree, ray, options.origin_tri, counters);
 }
 
 template <bool kAnyHit>

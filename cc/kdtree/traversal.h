@@ -55,25 +55,23 @@
 //    the watertight ray) runs in SSE, bit-identical to the scalar code
 //    (cc/kdtree/ray_setup.h).
 //  - Leaves read their triangles' vertices in leaf order, in packets of 4
-//    (KdTree::leaf_soa, cc/kdtree/leaf_layout.h; the builder fills them) when
-//    the tree has them, else from KdTree::verts by index.
+//    (KdTree::leaf_soa, cc/kdtree/leaf_layout.h; the builder fills them):
+//    one contiguous block per leaf, never a vertex fetched by index.
 //  - The common rejection of the watertight test (edge functions of definitely
 //    different signs, the same float expressions as watertight.h) runs first,
 //    with the packets on 8 triangles at once (two packets, where the build's
-//    static target has 256-bit vectors) or 4 (SSE), else inlined per
-//    triangle; with the packets it also drops triangles whose three vertices
-//    lie behind the origin (tmin >= 0), and the rest of the test runs in
-//    vectors too, the scalar test only for lanes within rounding of an edge
-//    or of tmin (lane_test-inl.h, the packet kernel's code). The fast test
-//    runs on the same packets, 8 or 4 triangles at once, bit for bit
-//    IntersectTriangle (lane_fast_test-inl.h).
-//  - Optional mailboxing (TraversalOptions::mailbox; Amanatides & Woo, "A fast
-//    voxel traversal algorithm for ray tracing", Eurographics 1987; Havran's
-//    thesis, 2000, section 5.5): a triangle that clipping put in several leaves
-//    is tested once per ray. A small direct-mapped table of the last tested
-//    indices (kMailboxSlots, indexed by tri mod size) per ray; a second test of
-//    a triangle could only repeat the first one's answer with a tighter best
-//    hit, so skipping it is exact. N_IT then counts the tests really made.
+//    static target has 256-bit vectors) or 4 (SSE); it also drops triangles
+//    whose three vertices lie behind the origin (tmin >= 0), and the rest of
+//    the test runs in vectors too, the scalar test only for lanes within
+//    rounding of an edge or of tmin (lane_test-inl.h, the packet kernel's
+//    code). The fast test runs on the same packets, 8 or 4 triangles at once,
+//    bit for bit IntersectTriangle (lane_fast_test-inl.h).
+//  - No mailboxing (Amanatides & Woo 1987; Havran's thesis, section 5.5): a
+//    per-ray table of tested triangles was an option here until it measured
+//    0.96-1.03 of the plain traversal's render time on the 25 scenes of 50k
+//    triangles or more of the standard profile (experiments/bench.py,
+//    sah-packet, 5 paired rounds, 2026-12): a vector step tests a leaf
+//    packet's triangles at once, so skipping one saves nothing.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
@@ -98,11 +96,9 @@ struct TraversalCounters {
   }
 };
 
-// Options of one query. Defaults: the report's traversal (no mailbox),
-// watertight test.
+// Options of one query. Defaults: the report's traversal, watertight test.
 struct TraversalOptions {
   IntersectionMode mode = IntersectionMode::kWatertight;
-  bool mailbox = false;
   // The triangle a secondary ray leaves from (the renderer's primary hit), or
   // kNoHit. With the watertight test it is not tested: the spawned origin lies
   // strictly on the ray's side of that triangle's exact plane (spawn.h), so
@@ -131,7 +127,6 @@ struct TraversalOptions {
   // report's order.
   bool from_end = false;
 };
-inline constexpr int kMailboxSlots = 8;
 
 // Deepest stack the traversal needs is the tree depth; Config::Validate caps
 // maxDepth at 60.
@@ -147,7 +142,7 @@ inline TraversalOptions WithTest(IntersectionMode mode) {
 // The two queries. Intersect: the closest hit with ray.tmin < t <= ray.tmax
 // (ties: the smaller triangle index). Occluded: whether any triangle is hit
 // with ray.tmin < t <= ray.tmax (early exit). Default options: the watertight
-// test, no mailbox, no origin triangle; `counters` (may be null) gathers
+// test, no origin triangle; `counters` (may be null) gathers
 // N_IT and N_TR.
 Hit Intersect(const KdTree& tree, const Ray& ray, const TraversalOptions& options = TraversalOptions(),
               TraversalCounters* counters = nullptr);

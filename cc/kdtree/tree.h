@@ -1,21 +1,22 @@
 // The kd-tree as plain data: builders produce it, traversal reads it.
 //
-// Layout of the report (section "Spatial median kd-tree"): every node is 8
+// Nodes as in the report (section "Spatial median kd-tree"): every node is 8
 // bytes. The two low bits of `bits` hold the split axis (0, 1, 2) or the leaf
 // flag (3). An inner node stores the split position in `split`; its left child
 // is the next node in the array and `bits >> 2` is the index of its right
-// child. A leaf's `bits >> 2` points into `refs` at a count followed by that
-// many triangle indices (a count-prefixed list). All empty leaves share the
-// single count 0 stored at refs[0].
+// child. The report's leaf points at a count-prefixed list of triangle
+// indices; the builders produce that form (ListTree, list_tree.h), and the
+// finished tree's leaf points at its triangles themselves, stored in leaf
+// order in packets of four (leaf_layout.h): the one copy of each triangle
+// the traversal reads.
 #ifndef KDTREE_CC_KDTREE_TREE_H_
 #define KDTREE_CC_KDTREE_TREE_H_
 
+#include <cstddef>
 #include <cstdint>
-#include <vector>
 
 #include "cc/base/huge_pages.h"
 #include "cc/geometry/aabb.h"
-#include "cc/geometry/intersect.h"
 #include "cc/kdtree/config.h"
 
 namespace kdtree {
@@ -29,13 +30,14 @@ struct KdNode {
 
   bool is_leaf() const { return (bits & 3u) == kLeaf; }
   int axis() const { return static_cast<int>(bits & 3u); }
-  // Inner node: index of the right child. Leaf: offset of its list in refs.
+  // Inner node: index of the right child. Leaf: offset of its list in
+  // ListTree::refs, or of its first packet in KdTree::leaf_soa.
   uint32_t index() const { return bits >> 2; }
 
   static KdNode Inner(int axis, float split, uint32_t right) {
     return KdNode{split, (right << 2) | static_cast<uint32_t>(axis)};
   }
-  static KdNode Leaf(uint32_t refs_offset) { return KdNode{0.0f, (refs_offset << 2) | kLeaf}; }
+  static KdNode Leaf(uint32_t offset) { return KdNode{0.0f, (offset << 2) | kLeaf}; }
 };
 static_assert(sizeof(KdNode) == 8, "the report's node is 8 bytes");
 
@@ -60,28 +62,20 @@ struct BuildCounters {
 // parallel where they can).
 struct KdTree {
   Config config;
-  AABB bounds;                  // root box: union of the triangles' tight boxes
-  HugeBuffer<KdNode> nodes;      // nodes[0] is the root
-  HugeBuffer<uint32_t> refs;     // count-prefixed leaf lists; refs[0] == 0
-  // The triangles' vertices, 3 per triangle (a, b, c as in the soup), by
-  // index: the one copy of each triangle outside the leaf layout. The
-  // watertight test (cc/geometry/watertight.h) needs the exact shared
-  // vertices; the fast test forms its edges (TriAccel: v0, e1 = b - a,
-  // e2 = c - a) at each test, from these or from the leaf packets, the same
-  // floats a stored copy would hold.
-  HugeBuffer<Vec3> verts;
-  // Optional, leaf order (cc/kdtree/leaf_layout.h): each leaf's triangle
-  // vertices and indices in packets of 4 triangles (structure of arrays, 40
-  // words per packet) in leaf_soa; leaf_nodes is `nodes` with each leaf
-  // pointing at its first packet. Empty: traversal reads `verts` by index.
+  AABB bounds;               // root box: union of the triangles' tight boxes
+  // nodes[0] is the root. A leaf's index() is its first packet in leaf_soa,
+  // or kEmptyLeaf (leaf_layout.h) for an empty leaf.
+  HugeBuffer<KdNode> nodes;
+  // Each leaf's triangles, in packets of 4 (structure of arrays, 40 words a
+  // packet: the vertices exactly as in the soup, which the watertight test
+  // needs, then the triangle indices; leaf_layout.h). A triangle in several
+  // leaves is stored in each: no vertex is read by index.
   HugeBuffer<float> leaf_soa;
-  HugeBuffer<KdNode> leaf_nodes;
+  size_t triangles = 0;      // the soup's triangle count
   BuildCounters counters;
-  double build_seconds = 0;     // T_B: triangles in memory to traversable tree
+  double build_seconds = 0;  // T_B: triangles in memory to traversable tree
 
-  size_t num_triangles() const { return verts.size() / 3; }
-  const uint32_t* LeafBegin(const KdNode& leaf) const { return &refs[leaf.index() + 1]; }
-  uint32_t LeafCount(const KdNode& leaf) const { return refs[leaf.index()]; }
+  size_t num_triangles() const { return triangles; }
 };
 
 }  // namespace kdtree
