@@ -47,6 +47,7 @@ from analysis import robustness  # noqa: E402
 from analysis import row18  # noqa: E402
 from analysis import seed_tables  # noqa: E402
 from analysis import table1  # noqa: E402
+from analysis import tree_memory  # noqa: E402
 
 # Order matters only for readability of macros.tex.
 GENERATORS = [
@@ -64,6 +65,7 @@ GENERATORS = [
     claims,
     embree,
     embree_build,
+    tree_memory,
     accuracy,
     robustness,
     gallery,

@@ -13,6 +13,7 @@ from analysis import robustness
 from analysis import row18
 from analysis import seed_tables
 from analysis import testdata
+from analysis import tree_memory
 
 # Every \newcommand that report/main.tex relies on must be generated.
 EXPECTED_MACROS = [
@@ -54,7 +55,7 @@ EXPECTED_MACROS = [
     "OursOverFinalScenes", "OursOverFinalRatioMedian", "OursOverFinalRatioMin",
     "OursOverFinalRatioMax", "OursFastOverFinalScenes", "OursFastOverFinalRatioMedian",
     "OursFastOverFinalRatioMin", "OursFastOverFinalRatioMax",
-] + clipping_errata.MACROS + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
+] + tree_memory.MACROS + clipping_errata.MACROS + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
     provenance_macros.MACROS
 
 

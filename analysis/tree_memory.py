@@ -1,0 +1,66 @@
+"""Memory of the finished trees: bytes per triangle (issue 23's "one copy of
+each triangle", aiming at 64 bytes a triangle or less for our fastest tree).
+
+A finished tree (cc/kdtree/tree.h) holds its 8-byte nodes and, per leaf, its
+triangles in packets of four (160 bytes a packet: the vertices and the
+indices, cc/kdtree/leaf_layout.h); the record's tree_bytes is their sum. A
+triangle referenced by several leaves (clipping) is stored in each, so the
+bytes follow N_TP, the references, more than N_tri. Per preset, over the
+scenes with a record of it: the median, lowest and highest tree_bytes /
+N_tri, and the median of N_TP / N_tri.
+
+Output: macros only (TreeBytes*), for the report's paragraph on memory.
+"""
+
+import statistics
+
+from analysis import kdtree_results as kr
+from analysis import latex
+from analysis import provenance
+
+FAST = "sah-packet"
+BINNED = "sah-packet-binned"
+REPORT = "clipping-pruning"
+TARGET = 64  # bytes a triangle (issue 23)
+
+MACROS = ["TreeBytesFastScenes", "TreeBytesFastMedian", "TreeBytesFastMin",
+          "TreeBytesFastMax", "TreeBytesFastAtMostTarget", "TreeRefsFastMedian",
+          "TreeBytesBinnedMedian", "TreeBytesReportMedian"]
+
+
+def per_triangle(df, preset, column):
+    """{scene: column / n_tri} over the scenes with a record of `preset`."""
+    out = {}
+    for scene in kr.scenes_in_order(df):
+        if (scene, preset) not in df.index:
+            continue
+        r = df.loc[(scene, preset)]
+        if kr.present(r[column]) and kr.present(r["n_tri"]) and r["n_tri"]:
+            out[scene] = float(r[column]) / float(r["n_tri"])
+    return out
+
+
+def macros(df):
+    def fmt(values, pick):
+        return ("%.0f" % pick(values) if values else latex.DASH, True)
+
+    fast = list(per_triangle(df, FAST, "tree_bytes").values())
+    refs = list(per_triangle(df, FAST, "N_TP").values())
+    binned = list(per_triangle(df, BINNED, "tree_bytes").values())
+    report = list(per_triangle(df, REPORT, "tree_bytes").values())
+    return {
+        "TreeBytesFastScenes": (str(len(fast)), False),
+        "TreeBytesFastMedian": fmt(fast, statistics.median),
+        "TreeBytesFastMin": fmt(fast, min),
+        "TreeBytesFastMax": fmt(fast, max),
+        "TreeBytesFastAtMostTarget": (str(sum(b <= TARGET for b in fast)), False),
+        "TreeRefsFastMedian": ("%.2f" % statistics.median(refs) if refs else latex.DASH, True),
+        "TreeBytesBinnedMedian": fmt(binned, statistics.median),
+        "TreeBytesReportMedian": fmt(report, statistics.median),
+    }
+
+
+def generate(ctx):
+    df = kr.frame(ctx.results(kr.KDTREE_FILE), ctx.manifest)
+    provenance.check_frame(ctx, df, "the tree memory", timings=False)
+    return macros(df)

@@ -1,0 +1,40 @@
+"""The tree-memory macros on kdrt records: tree_bytes and N_TP per triangle,
+per preset, over the scenes with a record of it."""
+
+import unittest
+
+from analysis import testdata
+from analysis import tree_memory
+
+
+class TreeMemoryTest(testdata.KdtreeFixtureTest):
+    def append(self, scene, preset, **over):
+        testdata.write_kdtree(self.ctx.results_dir, [testdata.kdrt_record(scene, preset, **over)])
+
+    def test_bytes_and_references_per_triangle(self):
+        # n_tri 1000 (alpha), 2000 (beta), 4000 (gamma).
+        self.append("alpha", "sah-packet", n_tri=1000, tree_bytes=60000, N_TP=1500)
+        self.append("beta", "sah-packet", n_tri=2000, tree_bytes=160000, N_TP=4000)
+        self.append("gamma", "sah-packet", n_tri=4000, tree_bytes=256000, N_TP=7200)
+        self.append("alpha", "sah-packet-binned", n_tri=1000, tree_bytes=70000)
+        macros = tree_memory.generate(self.ctx)
+        self.assertEqual(macros["TreeBytesFastScenes"][0], "3")
+        self.assertEqual(macros["TreeBytesFastMedian"][0], "64")  # 60, 80, 64
+        self.assertEqual(macros["TreeBytesFastMin"][0], "60")
+        self.assertEqual(macros["TreeBytesFastMax"][0], "80")
+        self.assertEqual(macros["TreeBytesFastAtMostTarget"][0], "2")  # 60 and 64
+        self.assertEqual(macros["TreeRefsFastMedian"][0], "1.80")  # 1.5, 2.0, 1.8
+        self.assertEqual(macros["TreeBytesBinnedMedian"][0], "70")
+        # The fixture's clipping-pruning: tree_bytes 4000 over its n_tri.
+        self.assertNotEqual(macros["TreeBytesReportMedian"][0], "---")
+        self.assertEqual(set(macros), set(tree_memory.MACROS))
+
+    def test_no_records_of_a_preset_give_dashes(self):
+        macros = tree_memory.generate(self.ctx)
+        self.assertEqual(macros["TreeBytesFastScenes"][0], "0")
+        self.assertEqual(macros["TreeBytesFastMedian"][0], "---")
+        self.assertEqual(macros["TreeRefsFastMedian"][0], "---")
+
+
+if __name__ == "__main__":
+    unittest.main()
