@@ -55,7 +55,8 @@ EXPECTED_MACROS = [
     "OursOverFinalScenes", "OursOverFinalRatioMedian", "OursOverFinalRatioMin",
     "OursOverFinalRatioMax", "OursFastOverFinalScenes", "OursFastOverFinalRatioMedian",
     "OursFastOverFinalRatioMin", "OursFastOverFinalRatioMax",
-] + tree_memory.MACROS + clipping_errata.MACROS + robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
+] + tree_memory.MACROS + clipping_errata.MACROS + \
+    robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
     provenance_macros.MACROS
 
 

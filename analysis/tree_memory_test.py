@@ -25,8 +25,9 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
         self.assertEqual(macros["TreeBytesFastAtMostTarget"][0], "2")  # 60 and 64
         self.assertEqual(macros["TreeRefsFastMedian"][0], "1.80")  # 1.5, 2.0, 1.8
         self.assertEqual(macros["TreeBytesBinnedMedian"][0], "70")
-        # The fixture's clipping-pruning: tree_bytes 4000 over its n_tri.
-        self.assertNotEqual(macros["TreeBytesReportMedian"][0], "---")
+        # The fixture's clipping-pruning: tree_bytes 4000 over n_tri 1000.
+        self.assertEqual(macros["TreeBytesReportMedian"][0], "4")
+        self.assertEqual(macros["TreeBytesTarget"][0], "64")
         self.assertEqual(set(macros), set(tree_memory.MACROS))
 
     def test_no_records_of_a_preset_give_dashes(self):

@@ -16,6 +16,10 @@ line>" for a build that fails (pruning-seed, the seed's float pruning, fails
 its validation on the engine). --compare exits 0 when both files hold
 the same keys with the same fingerprints, 1 otherwise, listing the
 differences.
+
+The fingerprint's definition changed at 4c5d23d (it hashes the nodes and the
+leaf packets; before, also the report's lists and a second node array, which
+the tree no longer keeps): compare files written on the same side of it.
 """
 
 import argparse

@@ -6,8 +6,8 @@
 //       --preset clipping-pruning --threads 1,2 --repeats 5 --out out/bench/render.jsonl
 //
 // Per scene: load the mesh and its view (manifest camera and light, else
-// AutoView), build the kd-tree once, and Embree
-// (cc/embree/embree_tracer.h) at the given quality. Then, before any timing,
+// AutoView), build the kd-tree once, and Embree (cc/embree/embree_tracer.h)
+// at the given quality. Then, before any timing,
 // validation: one render with the kd-tree recording every ray; each variant and
 // Embree trace the recorded rays again (cc/render/compare.h), and a sample of
 // --check_rays of them is checked against brute force (cc/kdtree/brute_force.h).
@@ -122,8 +122,9 @@ ABSL_FLAG(int, warmup, 1,
           "T_R_warmup_runs).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_packet,kd_origin,kd_packet_origin",
-          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin; NAME@TARGET runs the packet kernel on that Highway target "
-          "(kd_packet_origin@AVX2; the machine's: ray_packet.h PacketKernelTargets).");
+          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin; NAME@TARGET "
+          "runs the packet kernel on that Highway target (kd_packet_origin@AVX2; the "
+          "machine's: ray_packet.h PacketKernelTargets).");
 ABSL_FLAG(std::string, envs, "",
           "Comma-separated environment files (env_file.h), each applied on top of --preset to "
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
@@ -343,6 +344,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"primary", recorded.primary.rays},
                 {"shadow", recorded.shadow.rays},
                 {"ao", recorded.ao.rays},
+                // The leaf packets' bytes (before 4c5d23d, also a second
+                // node array of 8 bytes a node).
                 {"leaf_layout_bytes", LeafLayoutBytes(*tree)},
                 {"tracers", std::move(tracers)},
                 {"ratio_kd_over_embree", std::move(ratios)},

@@ -5,7 +5,6 @@
 #include "absl/strings/str_cat.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/env_file.h"
-#include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/traversal.h"
 #include "cc/render/compare.h"
 

@@ -19,8 +19,9 @@
 namespace kdtree {
 namespace bench {
 
-// The preset's tree and one tree per environment file (the preset with the file on top), each with
-// its tracers. Not movable: the tracers point at the trees.
+// The preset's tree and one tree per environment file (the preset with the
+// file on top), each with its tracers. Not movable: the tracers point at the
+// trees.
 struct SceneTrees {
   struct EnvTree {
     std::string name;  // env:<file name>

@@ -38,8 +38,9 @@ struct BuildLimits {
   uint64_t max_bytes = 0;  // 0: no limit but the 2^30 index range
 };
 
-// Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs,
-// or a tree over limits.max_bytes (ResourceExhausted, saying where it stopped).
+// Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs
+// or 2^30 - 1 leaf packets, or a tree over limits.max_bytes
+// (ResourceExhausted, saying where it stopped).
 absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config,
                                    const BuildLimits& limits = {});
 

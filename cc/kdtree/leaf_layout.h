@@ -26,7 +26,7 @@
 // (KdTree::leaf_soa): a leaf's index in KdTree::nodes is its first packet
 // (kEmptyLeaf for an empty leaf), so a leaf visit reads one contiguous block,
 // with no dependent load of a count, a list or a vertex by index (each a
-// likely cache miss on large scenes). Until 2026-12 the tree also kept the
+// likely cache miss on large scenes). Before 4c5d23d the tree also kept the
 // report's lists (4 bytes a reference), a vertex array by index (36 bytes a
 // triangle) and a second node array; they served only a slower traversal
 // path, and the builder now frees the lists once the packets are written.

@@ -393,15 +393,16 @@ TEST(RayPacket, MixedSignsAndFallBacks) {
     d[i % 3] *= 3.0f;
     mixed.push_back(Ray{c, d});
   }
-  for (const KdTree* t : {&*tree}) {
+  // The packet path, then the fallback (the fast test: one ray at a time).
+  for (const TraversalOptions& o : {TraversalOptions(), WithTest(IntersectionMode::kFast)}) {
     Hit hits[kRayPacketSize];
     bool occ[kRayPacketSize];
-    IntersectPacket(*t, mixed.data(), kRayPacketSize, hits);
-    OccludedPacket(*t, mixed.data(), kRayPacketSize, nullptr, occ);
+    IntersectPacket(*tree, mixed.data(), kRayPacketSize, hits, o);
+    OccludedPacket(*tree, mixed.data(), kRayPacketSize, nullptr, occ, o);
     for (int i = 0; i < kRayPacketSize; ++i) {
-      EXPECT_TRUE(BitwiseSameHit(hits[i], Intersect(*t, mixed[i])));
+      EXPECT_TRUE(BitwiseSameHit(hits[i], Intersect(*tree, mixed[i], o)));
       EXPECT_TRUE(hits[i].hit());
-      EXPECT_EQ(occ[i], Occluded(*t, mixed[i]));
+      EXPECT_EQ(occ[i], Occluded(*tree, mixed[i], o));
     }
   }
 }

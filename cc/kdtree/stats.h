@@ -57,9 +57,9 @@ nlohmann::ordered_json StatsToJson(const TreeStats& s);
 // bits), leaf packets (vertices and triangle indices) and build counters. Two
 // builds have the same fingerprint when they wrote the same tree; benchmarks
 // use it to check that a faster builder still writes the tree it wrote
-// before. (Until 2026-12 the tree also held the report's reference lists and
+// before. (Before 4c5d23d the tree also held the report's reference lists and
 // a second node array, which the fingerprint hashed: fingerprints recorded
-// before then are not comparable with today's.)
+// before it are not comparable with later ones.)
 uint64_t TreeFingerprint(const KdTree& tree);
 
 }  // namespace kdtree

@@ -68,6 +68,34 @@ TEST_P(Options, EveryCombinationEqualsBruteForce) {
   EXPECT_EQ(counters.rays, rays.size());
 }
 
+// The fast test (Moeller-Trumbore) on the same traversal: the counting path
+// gives the fast path's hit bit for bit, and any hit, front to back or from
+// the ray's end, counted or not, agrees with it. (Against brute force the
+// fast test is checked in traversal_test, within its rounding.)
+TEST_P(Options, FastTestEveryCombinationAgrees) {
+  const auto& [scene, preset] = GetParam();
+  const TriangleSoup soup = SceneByName(scene);
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset(preset));
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  const std::vector<Ray> rays = TestRays(soup, 29);
+  const TraversalOptions fast = WithTest(IntersectionMode::kFast);
+  TraversalOptions end = fast;
+  end.from_end = true;
+  int hits = 0, mismatches = 0;
+  for (const Ray& ray : rays) {
+    TraversalCounters counters;
+    const Hit want = Intersect(*tree, ray, fast);
+    hits += want.hit();
+    if (!testing::BitwiseSameHit(Intersect(*tree, ray, fast, &counters), want)) ++mismatches;
+    for (const TraversalOptions& o : {fast, end}) {
+      if (Occluded(*tree, ray, o) != want.hit()) ++mismatches;
+      if (Occluded(*tree, ray, o, &counters) != want.hit()) ++mismatches;
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << scene << " " << preset;
+  EXPECT_GT(hits, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(All, Options,
                          ::testing::Combine(::testing::Values("sphere", "voxels", "thin"),
                                             ::testing::Values("median-24-8", "binning-8",
@@ -100,7 +128,8 @@ TEST(LeafLayout, PacketsHoldEachLeafsVerticesInOrder) {
     refs += tris.size();
     const uint32_t packets = (tris.size() + kPacketLanes - 1) / kPacketLanes;
     for (uint32_t j = 0; j < packets * kPacketLanes; ++j) {
-      const float* packet = &tree->leaf_soa[(node.index() + j / kPacketLanes) * size_t{kPacketFloats}];
+      const size_t at = (node.index() + j / kPacketLanes) * size_t{kPacketFloats};
+      const float* packet = &tree->leaf_soa[at];
       const int lane = j % kPacketLanes;
       uint32_t id;
       std::memcpy(&id, &packet[kPacketIds + lane], sizeof(id));

@@ -7,8 +7,9 @@
 // child. The report's leaf points at a count-prefixed list of triangle
 // indices; the builders produce that form (ListTree, list_tree.h), and the
 // finished tree's leaf points at its triangles themselves, stored in leaf
-// order in packets of four (leaf_layout.h): the one copy of each triangle
-// the traversal reads.
+// order in packets of four (leaf_layout.h): all the traversal reads, with no
+// copy of the triangles beside them (a triangle is stored once per leaf that
+// references it).
 #ifndef KDTREE_CC_KDTREE_TREE_H_
 #define KDTREE_CC_KDTREE_TREE_H_
 

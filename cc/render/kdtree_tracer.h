@@ -18,7 +18,8 @@ namespace kdtree {
 class KdTreeTracer : public Tracer {
  public:
   explicit KdTreeTracer(const KdTree& tree) : tree_(tree) {}
-  // With traversal options (mailboxing, intersection mode; traversal.h).
+  // With traversal options (intersection mode, origin triangle, order;
+  // traversal.h).
   KdTreeTracer(const KdTree& tree, const TraversalOptions& options)
       : tree_(tree), options_(options) {}
   std::string name() const override { return "kdtree"; }
