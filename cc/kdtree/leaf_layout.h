@@ -22,11 +22,12 @@
 // (the traversal masks them). Packet j of a leaf, lane l, is triangle
 // 4 j + l of the leaf's list in the builders' ListTree (list_tree.h).
 //
-// These packets are the finished tree's only copy of its triangles
-// (KdTree::leaf_soa): a leaf's index in KdTree::nodes is its first packet
-// (kEmptyLeaf for an empty leaf), so a leaf visit reads one contiguous block,
-// with no dependent load of a count, a list or a vertex by index (each a
-// likely cache miss on large scenes). Before 4c5d23d the tree also kept the
+// These packets are all the finished tree keeps of its triangles
+// (KdTree::leaf_soa; a triangle in several leaves is stored in each): a
+// leaf's index in KdTree::nodes is its first packet (kEmptyLeaf for an empty
+// leaf), so a leaf visit reads one contiguous block, with no dependent load
+// of a count, a list or a vertex by index (each a likely cache miss on large
+// scenes). Before 4c5d23d the tree also kept the
 // report's lists (4 bytes a reference), a vertex array by index (36 bytes a
 // triangle) and a second node array; they served only a slower traversal
 // path, and the builder now frees the lists once the packets are written.

@@ -67,11 +67,12 @@
 //    code). The fast test runs on the same packets, 8 or 4 triangles at once,
 //    bit for bit IntersectTriangle (lane_fast_test-inl.h).
 //  - No mailboxing (Amanatides & Woo 1987; Havran's thesis, section 5.5): a
-//    per-ray table of tested triangles was an option here until it measured
-//    0.96-1.03 of the plain traversal's render time on the 25 scenes of 50k
-//    triangles or more of the standard profile (experiments/bench.py,
-//    sah-packet, 5 paired rounds, 2026-12): a vector step tests a leaf
-//    packet's triangles at once, so skipping one saves nothing.
+//    per-ray table of tested triangles was an option here until the plain
+//    traversal's render time over its own measured 0.96-1.03 on the 25
+//    scenes of 50k triangles or more of the standard profile
+//    (experiments/bench.py, sah-packet, 5 paired rounds, 2026-12): a vector
+//    step tests a leaf packet's triangles at once, so skipping one saves
+//    nothing.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
