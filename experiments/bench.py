@@ -21,8 +21,10 @@ single rays (target 0.8) and our best mode against Embree's best mode (target
 median and range over the rounds; by render time (T_R) and, where the
 records have render_bench's replays, by tracing time alone (each mode's T_R
 less the replay of its mode in the same round: the renderer's own work,
-shared by every tracer, taken out). A last table (packets_summary) says what
-the packet kernel did per packet: its steps and the lanes each carried.
+shared by every tracer, taken out). passes_summary splits the tracing time
+by pass (camera rays, shadow rays) for single rays and for packets, to show
+where the gap is. A last table (packets_summary) says what the packet kernel
+did per packet: its steps and the lanes each carried.
 
 Numbers: T_B is the median of --repeats builds, and also the fastest, since
 on a shared or virtual machine the slow runs carry other load; Mtri/s =
@@ -382,6 +384,59 @@ def targets_summary(records, robust=False):
     return "\n".join(out)
 
 
+def pass_trace_runs(key):
+    """A runs_of for per_round_ratio: a tracer's time in one pass (key
+    "primary_s_runs" or "secondary_s_runs", render_bench's per-round pass
+    times) less its mode's replay in that pass, round by round; None without
+    them (records before the per-round pass times, or --replay=false)."""
+    def runs_of(tracers, name):
+        mode = "replay_packet" if name.split("@")[0] in PACKET_MODES else "replay"
+        runs, replay = tracers.get(name, {}).get(key), tracers.get(mode, {}).get(key)
+        if not runs or not replay:
+            return None
+        return [t - r for t, r in zip(runs, replay)]
+    return runs_of
+
+
+def passes_summary(records):
+    """Where issue 23's gap is, per pass (one thread): each pass's tracing
+    time alone (the pass less its mode's replay in the same round), Embree's
+    over ours, paired per round as in targets_summary: camera rays and
+    secondary rays (shadow rays, and AO rays where a view asks for them),
+    single rays (the faster of our single-ray modes against rtcIntersect1
+    / rtcOccluded1) and packets (the faster of our packet modes against
+    Embree's 16-ray packets). Below 1: that pass traces slower than Embree's."""
+    out = ["| scene | triangles | primary, single | shadow, single | primary, packets "
+           "| shadow, packets |", "|---|---|---|---|---|---|"]
+    passes = [("primary_s_runs", False), ("secondary_s_runs", False),
+              ("primary_s_runs", True), ("secondary_s_runs", True)]
+    columns = [[] for _ in passes]
+    for r in one_thread_by_size(records):
+        t = r["tracers"]
+        ours_single = [n for n in t if n in SINGLE_MODES]
+        ours_packets = [n for n in t if n.startswith("kd") and n.split("@")[0] in PACKET_MODES]
+        cells = []
+        for k, (key, packets) in enumerate(passes):
+            value = per_round_ratio(t, ("embree_packet",) if packets else EMBREE_SINGLE,
+                                    ours_packets if packets else ours_single,
+                                    pass_trace_runs(key))
+            if value is None:
+                cells.append("-")
+                continue
+            columns[k].append(value[0])
+            cells.append("%.2f [%.2f..%.2f]" % value)
+        if any(c != "-" for c in cells):
+            out.append("| %s | %s | %s |" % (r["scene"], format(r["n_tri"], ","), " | ".join(cells)))
+    for name, values in zip(("Primary rays, single", "Shadow rays, single", "Primary rays, packets",
+                             "Shadow rays, packets"), columns):
+        if values:
+            out.append("")
+            out.append("%s, tracing alone, Embree's over ours over %d rows: median %.2f, range "
+                       "%.2f to %.2f." % (name, len(values), statistics.median(values),
+                                          min(values), max(values)))
+    return "\n".join(out)
+
+
 def packets_summary(records):
     """What the packet kernel did in one untimed render per packet variant
     (render_bench's packet_counts; one row per scene, variant and query:
@@ -455,6 +510,7 @@ def main(argv=None):
         targets = summarise(render_records, targets_summary, render_out, *allow)
         robust = summarise(render_records, lambda r: targets_summary(r, robust=True),
                            render_out, *allow)
+        passes = summarise(render_records, passes_summary, render_out, *allow)
         packets = summarise(render_records, packets_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
@@ -466,6 +522,8 @@ def main(argv=None):
     print(targets)
     print("\n## The same against Embree built with RTC_SCENE_FLAG_ROBUST (same rounds)\n")
     print(robust)
+    print("\n## Per pass, tracing alone (render_bench, one thread, paired per round)\n")
+    print(passes)
     print("\n## The packet kernel's work (render_bench's packet_counts, one render)\n")
     print(packets)
 

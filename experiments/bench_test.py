@@ -145,6 +145,32 @@ class BenchTest(unittest.TestCase):
         del r["tracers"]["embree_robust"]
         self.assertNotIn("| s |", bench.targets_summary([r], robust=True))
 
+    def test_passes_summary_pairs_each_pass_less_its_replay(self):
+        def runs(total, primary, secondary):
+            return {"T_R_runs": total, "primary_s_runs": primary, "secondary_s_runs": secondary}
+        r = {"scene": "s", "n_tri": 100000, "preset": "sah-packet", "threads": 1,
+             "provenance": provenance(),
+             "tracers": {"kd": runs([3, 3], [1.5, 1.5], [1.5, 2.5]),
+                         "kd_origin": runs([3, 3], [1.6, 1.5], [1.0, 1.5]),
+                         "kd_packet_origin": runs([2, 2], [0.9, 0.8], [0.7, 0.7]),
+                         "embree": runs([2, 2], [1.2, 1.3], [0.7, 0.9]),
+                         "embree_packet": runs([1, 1], [0.6, 0.5], [0.7, 0.8]),
+                         "replay": runs([1, 1], [0.5, 0.5], [0.3, 0.3]),
+                         "replay_packet": runs([1, 1], [0.4, 0.4], [0.3, 0.3])}}
+        text = bench.passes_summary([r, dict(r, threads=2)])
+        # Primary, single: Embree 0.7, 0.8 over our faster 1.0, 1.0. Shadow,
+        # single: 0.4, 0.6 over 0.7, 1.2. Primary, packets: 0.2, 0.1 over 0.5,
+        # 0.4 (median 0.325, printed 0.32). Shadow, packets: 0.4, 0.5 over 0.4
+        # each round.
+        self.assertIn("| s | 100,000 | 0.75 [0.70..0.80] | 0.54 [0.50..0.57] | "
+                      "0.32 [0.25..0.40] | 1.12 [1.00..1.25] |", text)
+        self.assertEqual(len([l for l in text.splitlines() if l.startswith("| s |")]), 1)
+        self.assertIn("Shadow rays, packets, tracing alone, Embree's over ours over 1 rows: "
+                      "median 1.12, range 1.12 to 1.12.", text)
+        # Without the replays, or records without per-round pass times: no row.
+        del r["tracers"]["replay"], r["tracers"]["replay_packet"]
+        self.assertNotIn("| s |", bench.passes_summary([r]))
+
     def test_packets_summary_gives_steps_per_packet_and_lanes_per_step(self):
         def counts(packets, rays):
             return {"rays": rays, "packets": packets,

@@ -24,6 +24,8 @@ Json TracerTimes(const std::vector<Entry>& entries) {
                        {"mrays_per_s_median", e.rays / Median(e.runs) / 1e6},
                        {"primary_s_median", Median(e.primary)},
                        {"secondary_s_median", Median(e.secondary)},
+                       {"primary_s_runs", e.primary},
+                       {"secondary_s_runs", e.secondary},
                        {"first_over_this_paired", PairedRatio(entries[0].runs, e.runs)},
                        {"T_R_warmup_runs", e.warmup}};
   }
