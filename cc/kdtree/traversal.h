@@ -73,6 +73,16 @@
 //    (experiments/bench.py, sah-packet, 5 paired rounds, 2026-12): a vector
 //    step tests a leaf packet's triangles at once, so skipping one saves
 //    nothing.
+//  - Tried and not kept (render_bench, sah-packet, one thread, old and new
+//    binaries alternated, 2026-12-06; the same answers each time):
+//    - a branch-free inner step (the stack entry always written, the next
+//      node and interval chosen by selects): renders 1.6-1.7x as long on
+//      bunny and city. The branches are predicted, so the next node's load
+//      starts early; a select makes it wait (as in the packet kernel);
+//    - four leaf packets a step (16 lanes) where the static target has
+//      512-bit vectors: render times within 2 % of two a step on bunny, city,
+//      hairball-small and rungholt-1m;
+//    - a tighter tolerance near a shadow ray's origin (ray_setup.h).
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
