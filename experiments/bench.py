@@ -293,15 +293,21 @@ def t_r_runs(tracers, name):
     return tracers.get(name, {}).get("T_R_runs")
 
 
-def trace_runs(tracers, name):
-    """A tracer's render times less the replay of its mode, round by round
-    (render_bench --replay: the renderer's own work), i.e. its tracing time
-    alone; None without the replays."""
-    mode = "replay_packet" if name.split("@")[0] in PACKET_MODES else "replay"
-    runs, replay = t_r_runs(tracers, name), t_r_runs(tracers, mode)
-    if not runs or not replay:
-        return None
-    return [t - r for t, r in zip(runs, replay)]
+def tracing_runs(key="T_R_runs"):
+    """A runs_of for per_round_ratio: a tracer's times under `key` (T_R_runs:
+    whole renders; primary_s_runs or secondary_s_runs: one pass) less the
+    replay of its mode under the same key, round by round (render_bench
+    --replay: the renderer's own work), i.e. its tracing time alone; None
+    without them (--replay=false, or records from before the per-round pass
+    times)."""
+    def runs_of(tracers, name):
+        mode = "replay_packet" if name.split("@")[0] in PACKET_MODES else "replay"
+        runs, replay = tracers.get(name, {}).get(key), tracers.get(mode, {}).get(key)
+        if not runs or not replay:
+            return None
+        return [t - r for t, r in zip(runs, replay)]
+    return runs_of
+
 
 
 def per_round_ratio(tracers, theirs, ours, runs_of=t_r_runs):
@@ -355,8 +361,8 @@ def targets_summary(records, robust=False):
         single = [n for n in ours if n in SINGLE_MODES]
         values = [per_round_ratio(t, embree_single, single),
                   per_round_ratio(t, embree_all, ours),
-                  per_round_ratio(t, embree_single, single, trace_runs),
-                  per_round_ratio(t, embree_all, ours, trace_runs)]
+                  per_round_ratio(t, embree_single, single, tracing_runs()),
+                  per_round_ratio(t, embree_all, ours, tracing_runs())]
         cells = []
         for k, value in enumerate(values):
             if value is None:
@@ -384,20 +390,6 @@ def targets_summary(records, robust=False):
     return "\n".join(out)
 
 
-def pass_trace_runs(key):
-    """A runs_of for per_round_ratio: a tracer's time in one pass (key
-    "primary_s_runs" or "secondary_s_runs", render_bench's per-round pass
-    times) less its mode's replay in that pass, round by round; None without
-    them (records before the per-round pass times, or --replay=false)."""
-    def runs_of(tracers, name):
-        mode = "replay_packet" if name.split("@")[0] in PACKET_MODES else "replay"
-        runs, replay = tracers.get(name, {}).get(key), tracers.get(mode, {}).get(key)
-        if not runs or not replay:
-            return None
-        return [t - r for t, r in zip(runs, replay)]
-    return runs_of
-
-
 def passes_summary(records):
     """Where issue 23's gap is, per pass (one thread): each pass's tracing
     time alone (the pass less its mode's replay in the same round), Embree's
@@ -419,7 +411,7 @@ def passes_summary(records):
         for k, (key, packets) in enumerate(passes):
             value = per_round_ratio(t, ("embree_packet",) if packets else EMBREE_SINGLE,
                                     ours_packets if packets else ours_single,
-                                    pass_trace_runs(key))
+                                    tracing_runs(key))
             if value is None:
                 cells.append("-")
                 continue
