@@ -309,7 +309,6 @@ def tracing_runs(key="T_R_runs"):
     return runs_of
 
 
-
 def per_round_ratio(tracers, theirs, ours, runs_of=t_r_runs):
     """Per round, the fastest of Embree's modes `theirs` over the fastest of
     our modes `ours` (runs_of: one time per round, in round order), as
