@@ -31,11 +31,12 @@ constexpr float kHitSlack = 64.0f * 5.9604645e-8f;    // 64 * 2^-24, see travers
 // What the tolerance costs (render_bench, sah-packet, 2026-12-06): with a
 // thousandth of it (not exact; a bound on what any tighter analysis could
 // buy) the shadow pass of the single-ray traversal took 13-19 % less on
-// rungholt-1m, lost-empire and stk-candela-city, and nothing on city. A
-// bound from the largest triangle L instead of the scene, for nodes within
-// 2 L of a shadow ray's origin (delta = 16 * 2^-24 * 3 L, by the same
-// argument), bought at most 2.5 % (rungholt-1m) and cost 3-4 % on bunny,
-// city and stk-candela-city: not kept.
+// rungholt-1m, lost-empire and stk-candela-city, and nothing on city; with
+// half of it, nothing measurable on those scenes, bunny, city or
+// morse-buildings. A bound from the largest triangle L instead of the
+// scene, for nodes within 2 L of a shadow ray's origin (delta = 16 * 2^-24
+// * 3 L, by the same argument), bought at most 2.5 % (rungholt-1m) and cost
+// 3-4 % on bunny, city and stk-candela-city: not kept.
 constexpr float kSpatialTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24, see traversal.h
 
 // Inputs are finite here, so a plain comparison equals std::fmax without the
