@@ -46,6 +46,7 @@
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/ray_setup.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 
@@ -146,6 +147,16 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
     slack[v] = hn::Load(d, p.slack + v * n);
   }
   const V inf = hn::Set(d, INFINITY);
+  // Shadow rays (any hit from the end; the kernel tests watertight only):
+  // the single-ray traversal's tolerance relative to the interval
+  // (ray_setup.h IntervalTol), per lane, set at the root and at each pop.
+  constexpr bool kRelative = kAnyHit && kFromEnd;
+  const auto interval_tol = [&](V a, V b) {
+    return hn::Add(hn::Mul(hn::Set(d, ray_setup::kRelTol), hn::Max(hn::Abs(a), hn::Abs(b))),
+                   hn::Set(d, ray_setup::kRelTolFloor));
+  };
+  V rel_tol[kV];
+  for (int v = 0; v < kV; ++v) rel_tol[v] = interval_tol(t_entry[v], t_exit[v]);
   Frames<D> frames[kV];
   for (int v = 0; v < kV; ++v) frames[v] = Frames<D>(d, p, v * n);
   // Each lane's best t so far: its ray's tmax, as best[i].t holds on entry.
@@ -164,10 +175,12 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
       // The single-ray rules (traversal.cc), per lane.
       V ts[kV];
       uint32_t near_only = 0, far_only = 0;
+      V tl[kV];
       for (int v = 0; v < kV; ++v) {
         ts[v] = hn::Mul(hn::Sub(split, org[v][axis]), inv[v][axis]);
-        near_only |= Bits(d, hn::Gt(ts[v], hn::Add(t_exit[v], tol[v][axis]))) << (v * n);
-        far_only |= Bits(d, hn::Lt(ts[v], hn::Sub(t_entry[v], tol[v][axis]))) << (v * n);
+        tl[v] = kRelative ? rel_tol[v] : tol[v][axis];
+        near_only |= Bits(d, hn::Gt(ts[v], hn::Add(t_exit[v], tl[v]))) << (v * n);
+        far_only |= Bits(d, hn::Lt(ts[v], hn::Sub(t_entry[v], tl[v]))) << (v * n);
       }
       near_only &= lanes;
       far_only &= lanes & ~near_only;
@@ -210,8 +223,8 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
           for (int v = 0; v < kV; ++v) {
             const V tc = hn::Min(t_exit[v], hn::Max(t_entry[v], ts[v]));
             const auto clamp = FromBits(d, (both >> (v * n)) & kFull);
-            const V near_exit = hn::IfThenElse(clamp, hn::Add(tc, tol[v][axis]), t_exit[v]);
-            const V far_entry = hn::IfThenElse(clamp, hn::Sub(tc, tol[v][axis]), t_entry[v]);
+            const V near_exit = hn::IfThenElse(clamp, hn::Add(tc, tl[v]), t_exit[v]);
+            const V far_entry = hn::IfThenElse(clamp, hn::Sub(tc, tl[v]), t_entry[v]);
             hn::Store(kFromEnd ? t_entry[v] : far_entry, d, stack.t_entry[top] + v * n);
             hn::Store(kFromEnd ? near_exit : t_exit[v], d, stack.t_exit[top] + v * n);
             (kFromEnd ? t_entry[v] : t_exit[v]) = kFromEnd ? far_entry : near_exit;
@@ -252,6 +265,7 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
       for (int v = 0; v < kV; ++v) {
         t_entry[v] = hn::Load(d, stack.t_entry[top] + v * n);
         t_exit[v] = hn::Load(d, stack.t_exit[top] + v * n);
+        if (kRelative) rel_tol[v] = interval_tol(t_entry[v], t_exit[v]);
       }
       break;
     }

@@ -36,14 +36,22 @@ constexpr float kHitSlack = 64.0f * 5.9604645e-8f;    // 64 * 2^-24, see travers
 // morse-buildings. A bound from the largest triangle L instead of the
 // scene, for nodes within 2 L of a shadow ray's origin (delta = 16 * 2^-24
 // * 3 L, by the same argument), bought at most 2.5 % (rungholt-1m) and cost
-// 3-4 % on bunny, city and stk-candela-city: not kept. Nor a tolerance in t
-// relative to the node's interval for shadow rays with the watertight test
-// (16 * 2^-24 * max(|t_entry|, |t_exit|), set at the root and at each pop,
-// single rays and packets alike): the single-ray shadow pass 7.5 % shorter
-// on rungholt-1m and lost-empire, unchanged on bunny and city, 2-3 % longer
-// on stk-candela-city and courtyard-1m; the packets' 10-12 % shorter on the
-// first two, unchanged on eight other scenes.
+// 3-4 % on bunny, city and stk-candela-city: not kept. What is kept is a
+// tolerance relative to the node's interval for shadow rays with the
+// watertight test (IntervalTol below; traversal.h).
 constexpr float kSpatialTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24, see traversal.h
+
+// The planes' tolerance in t for shadow rays searched with the watertight
+// test (traversal.h, "Robustness"): 16 * 2^-24 * max(|t_entry|, |t_exit|)
+// plus the smallest normal float, from the interval of a node or one of its
+// ancestors. The single-ray traversal computes it when it pushes a node,
+// the packet kernel per lane when it pops one, with these operations.
+constexpr float kRelTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24
+constexpr float kRelTolFloor = 0x1p-126f;
+inline float IntervalTol(float t_entry, float t_exit) {
+  const float a = std::fabs(t_entry), b = std::fabs(t_exit);
+  return kRelTol * (a > b ? a : b) + kRelTolFloor;
+}
 
 // Inputs are finite here, so a plain comparison equals std::fmax without the
 // libm call.

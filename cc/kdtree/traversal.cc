@@ -73,6 +73,7 @@ HWY_INLINE hn::Vec<DU> StepIds(DU du, const float* p0, const float* p1) {
 struct StackEntry {
   uint32_t node;
   float t_entry, t_exit;
+  float interval_tol;  // IntervalTol(t_entry, t_exit), shadow rays only
 };
 
 // The single-ray traversal: set-up, then a loop of three parts (the descent
@@ -100,6 +101,12 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   const bool* const negative = setup.negative;
   const float delta = setup.delta;
   float t_entry = setup.t_entry, t_exit = setup.t_exit;
+  // Shadow rays (any hit from the end, watertight test) thicken the planes
+  // by a tolerance relative to the interval instead of tol (traversal.h,
+  // "Robustness"): computed here and for each pushed node, kept in the
+  // stack entry, so a pop does not wait for it.
+  constexpr bool kRelative = kAnyHit && kFromEnd && kMode == IntersectionMode::kWatertight;
+  float interval_tol = kRelative ? ray_setup::IntervalTol(t_entry, t_exit) : 0.0f;
   best.t = ray.tmax;
   const float slack = setup.slack;
   const WatertightRay& wray = setup.wray;
@@ -139,7 +146,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
       const uint32_t far = negative[axis] ? left : right;
       // A child is skipped only when the plane (thickened by the tolerance) is
       // clearly outside the interval.
-      const float t_tol = tol[axis];
+      const float t_tol = kRelative ? interval_tol : tol[axis];
       if (t_split > t_exit + t_tol) {
         index = near;
       } else if (t_split < t_entry - t_tol) {
@@ -150,11 +157,13 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const float ts = lo > t_exit ? t_exit : lo;
         assert(top < kMaxTraversalStack);
         if (kFromEnd) {  // TraversalOptions::from_end: the far child first
-          stack[top++] = StackEntry{near, t_entry, ts + t_tol};
+          const float near_exit = ts + t_tol;
+          stack[top++] = StackEntry{near, t_entry, near_exit,
+                                    kRelative ? ray_setup::IntervalTol(t_entry, near_exit) : 0.0f};
           index = far;
           t_entry = ts - t_tol;
         } else {
-          stack[top++] = StackEntry{far, ts - t_tol, t_exit};
+          stack[top++] = StackEntry{far, ts - t_tol, t_exit, 0.0f};
           _mm_prefetch(reinterpret_cast<const char*>(&nodes[far]), _MM_HINT_T0);
           index = near;
           t_exit = ts + t_tol;
@@ -166,7 +175,8 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
         const float gap = node->split - org[axis];
         if (std::fabs(gap) <= delta) {
           assert(top < kMaxTraversalStack);
-          stack[top++] = StackEntry{kFromEnd ? near : far, t_entry, t_exit};
+          stack[top++] = StackEntry{kFromEnd ? near : far, t_entry, t_exit,
+                                    kRelative ? ray_setup::IntervalTol(t_entry, t_exit) : 0.0f};
           index = kFromEnd ? far : near;
         } else {
           index = gap > 0 ? left : right;
@@ -266,6 +276,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
       index = e.node;
       t_entry = e.t_entry;
       t_exit = e.t_exit;
+      if (kRelative) interval_tol = e.interval_tol;
       break;
     }
   }
