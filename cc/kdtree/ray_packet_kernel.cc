@@ -156,7 +156,9 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
                    hn::Set(d, ray_setup::kRelTolFloor));
   };
   V rel_tol[kV];
-  for (int v = 0; v < kV; ++v) rel_tol[v] = interval_tol(t_entry[v], t_exit[v]);
+  if (kRelative) {
+    for (int v = 0; v < kV; ++v) rel_tol[v] = interval_tol(t_entry[v], t_exit[v]);
+  }
   Frames<D> frames[kV];
   for (int v = 0; v < kV; ++v) frames[v] = Frames<D>(d, p, v * n);
   // Each lane's best t so far: its ray's tmax, as best[i].t holds on entry.

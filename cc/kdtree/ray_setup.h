@@ -41,6 +41,10 @@ constexpr float kHitSlack = 64.0f * 5.9604645e-8f;    // 64 * 2^-24, see travers
 // watertight test (IntervalTol below; traversal.h).
 constexpr float kSpatialTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24, see traversal.h
 
+// Inputs are finite here, so a plain comparison equals std::fmax without the
+// libm call.
+inline float Max(float a, float b) { return a > b ? a : b; }
+
 // The planes' tolerance in t for shadow rays searched with the watertight
 // test (traversal.h, "Robustness"): 16 * 2^-24 * max(|t_entry|, |t_exit|)
 // plus the smallest normal float, from the interval of a node or one of its
@@ -49,13 +53,9 @@ constexpr float kSpatialTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24, see travers
 constexpr float kRelTol = 16.0f * 5.9604645e-8f;  // 16 * 2^-24
 constexpr float kRelTolFloor = 0x1p-126f;
 inline float IntervalTol(float t_entry, float t_exit) {
-  const float a = std::fabs(t_entry), b = std::fabs(t_exit);
-  return kRelTol * (a > b ? a : b) + kRelTolFloor;
+  return kRelTol * Max(std::fabs(t_entry), std::fabs(t_exit)) + kRelTolFloor;
 }
 
-// Inputs are finite here, so a plain comparison equals std::fmax without the
-// libm call.
-inline float Max(float a, float b) { return a > b ? a : b; }
 }  // namespace ray_setup
 
 struct RaySetup {

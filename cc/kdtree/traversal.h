@@ -99,7 +99,7 @@
 //    - four leaf packets a step (16 lanes) where the static target has
 //      512-bit vectors: render times within 2 % of two a step on bunny, city,
 //      hairball-small and rungholt-1m (one process 4 % slower on the last);
-//    - a tighter tolerance near a shadow ray's origin (ray_setup.h).
+//    - other tighter tolerances for shadow rays (ray_setup.h).
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
