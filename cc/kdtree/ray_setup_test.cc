@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <utility>
@@ -97,6 +98,67 @@ TEST(RaySetup, SimdEqualsScalarBitForBit) {
   EXPECT_GT(hits, 50000);
   EXPECT_LT(hits, compared - 50000);
   EXPECT_GT(simd, 200000);
+}
+
+// A component as rays come: mostly Wild, sometimes NaN, infinite or
+// subnormal (which SanitizeRay rejects or flushes to zero).
+float Raw(std::mt19937& rng) {
+  switch (std::uniform_int_distribution<int>(0, 40)(rng)) {
+    case 0:
+      return NAN;
+    case 1:
+      return -INFINITY;
+    case 2:
+      return INFINITY;
+    case 3:
+      return std::numeric_limits<float>::denorm_min();
+    case 4:
+      return -std::numeric_limits<float>::min() / 2;
+    case 5:
+      return std::numeric_limits<float>::min();
+    default:
+      return Wild(rng);
+  }
+}
+
+// The traversal's entry (SanitizeAndSetUpRay, whose common case skips
+// SanitizeRay) against SanitizeRay then SetUpRayScalar, on rays as given:
+// the same answer, the same sanitized ray, and every field bit for bit.
+TEST(RaySetup, SanitizeAndSetUpEqualsScalarBitForBit) {
+  std::mt19937 rng(20261206);
+  int hits = 0, misses = 0, rejected = 0;
+  for (int i = 0; i < 400000; ++i) {
+    AABB box;
+    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+    if (i % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    Ray ray;
+    ray.origin = Vec3(Raw(rng), Raw(rng), Raw(rng));
+    ray.dir = Vec3(Raw(rng), Raw(rng), Raw(rng));
+    ray.tmin = i % 4 == 0 ? -1.0f : i % 97 == 0 ? NAN : 0.0f;
+    ray.tmax = i % 6 == 0 ? 3.0f : i % 89 == 0 ? -2.0f : INFINITY;
+    Ray a = ray, b = ray;
+    RaySetup sa, sb;
+    const bool ha = SanitizeAndSetUpRay(&a, box, &sa);
+    const bool valid = SanitizeRay(&b);
+    const bool hb = valid && SetUpRayScalar(b, box, &sb);
+    ASSERT_EQ(ha, hb) << i;
+    rejected += !valid;
+    if (!ha) {
+      misses += valid;
+      continue;
+    }
+    ++hits;
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(Bits(a.origin[k]), Bits(b.origin[k])) << i;
+      ASSERT_EQ(Bits(a.dir[k]), Bits(b.dir[k])) << i;
+    }
+    ExpectSame(sa, sb, i);
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(hits, 50000);
+  EXPECT_GT(misses, 50000);
+  EXPECT_GT(rejected, 20000);
 }
 
 // The packet kernel's vector set-up (packet_internal::SetUpLanes, 16 lanes at

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/ray_setup.h"
@@ -90,11 +89,12 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
   Hit best;
   if (kCount) ++counters->rays;
   Ray ray = LoadRay(input);  // not a wide copy (ray.h)
-  if (!SanitizeRay(&ray) || tree.nodes.empty() || !tree.bounds.Valid()) return best;
-  // Reciprocal direction, tolerances, the padded root interval, the slack and
-  // the watertight ray (ray_setup.h; see the robustness notes in traversal.h).
+  if (tree.nodes.empty() || !tree.bounds.Valid()) return best;
+  // SanitizeRay, then the reciprocal direction, tolerances, the padded root
+  // interval, the slack and the watertight ray (ray_setup.h; see the
+  // robustness notes in traversal.h).
   RaySetup setup;
-  if (!SetUpRay(ray, tree.bounds, &setup)) return best;
+  if (!SanitizeAndSetUpRay(&ray, tree.bounds, &setup)) return best;
   const float* const org = setup.org;
   const float* const inv = setup.inv;
   const float* const tol = setup.tol;

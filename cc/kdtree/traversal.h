@@ -68,9 +68,9 @@
 // mode are template parameters, so the fast path carries no counting code.
 //
 // Speed (none of it changes a result):
-//  - The per-ray set-up (reciprocals, tolerances, the padded root interval,
-//    the watertight ray) runs in SSE, bit-identical to the scalar code
-//    (cc/kdtree/ray_setup.h).
+//  - The per-ray set-up (the ray's check, reciprocals, tolerances, the
+//    padded root interval, the watertight ray) runs in SSE, bit-identical to
+//    the scalar code (cc/kdtree/ray_setup.h SanitizeAndSetUpRay).
 //  - Leaves read their triangles' vertices in leaf order, in packets of 4
 //    (KdTree::leaf_soa, cc/kdtree/leaf_layout.h; the builder fills them):
 //    one contiguous block per leaf, never a vertex fetched by index.
