@@ -64,15 +64,21 @@ float Wild(std::mt19937& rng) {
   }
 }
 
+// A box of two Wild corners, or every seventh time (by i) the unit cube.
+AABB WildBox(std::mt19937& rng, int i) {
+  AABB box;
+  box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+  box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
+  if (i % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+  return box;
+}
+
 TEST(RaySetup, SimdEqualsScalarBitForBit) {
   std::mt19937 rng(20261201);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   int compared = 0, hits = 0, simd = 0;
   for (int i = 0; i < 400000; ++i) {
-    AABB box;
-    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-    if (i % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    const AABB box = WildBox(rng, i);
     Ray ray;
     // Origins inside, on and outside the box; directions of every scale.
     ray.origin = i % 3 == 0 ? Vec3(unit(rng), unit(rng), unit(rng)) * 2.0f
@@ -128,10 +134,7 @@ TEST(RaySetup, SanitizeAndSetUpEqualsScalarBitForBit) {
   std::mt19937 rng(20261206);
   int hits = 0, misses = 0, rejected = 0;
   for (int i = 0; i < 400000; ++i) {
-    AABB box;
-    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-    box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-    if (i % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    const AABB box = WildBox(rng, i);
     Ray ray;
     ray.origin = Vec3(Raw(rng), Raw(rng), Raw(rng));
     ray.dir = Vec3(Raw(rng), Raw(rng), Raw(rng));
@@ -175,10 +178,7 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
     ASSERT_TRUE(scoped.ok()) << target;
     ++targets;
     for (int g = 0; g < 8000; ++g) {
-      AABB box;
-      box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-      box.Extend(Vec3(Wild(rng), Wild(rng), Wild(rng)));
-      if (g % 7 == 0) box = AABB(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+      const AABB box = WildBox(rng, g);
       Ray rays[kLanes];
       packet_internal::PacketRays p;
       bool ok = true;
