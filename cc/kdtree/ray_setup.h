@@ -25,8 +25,6 @@
 #define KDTREE_CC_KDTREE_RAY_SETUP_H_
 
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -135,10 +133,11 @@ namespace ray_setup {
 
 // SetUpRay's vector path for a ray with every direction component nonzero:
 // o = (ox, oy, oz, 0), d = (dx, dy, dz, 1). Lane k of every vector is axis
-// k; the three slabs, the reach and the watertight frame are computed in
+// k; the reach, the three slabs and the root interval are computed in
 // lanes, with the scalar code's operations and MINPS / MAXPS / MINSS /
 // MAXSS operand orders (which select what the scalar comparisons select,
-// NaN and signed zeros included).
+// NaN and signed zeros included); the watertight frame's three divisions
+// and the slack's share one vector division.
 inline __attribute__((always_inline)) bool SetUpVector(__m128 o, __m128 d, const Ray& ray,
                                                        const AABB& box, RaySetup* s) {
   const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
