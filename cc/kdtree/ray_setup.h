@@ -190,8 +190,9 @@ inline __attribute__((always_inline)) bool SetUpVector(__m128 o, __m128 d, const
   // MakeWatertightRay's three divisions and the slack's one, in one. Its
   // axes come from WatertightAxes' branches, which the camera's and a
   // light's rays predict: a branch-free choice of the axes and lanes
-  // (movemask, a table of pshufb controls) took the render 1.5-2.5 % longer
-  // (render_bench, in one process, bunny, city2 and teapots, 7 paired rounds),
+  // (movemask, a table of pshufb controls) made the camera pass 1.4-2.4 %
+  // longer and the render 0.7-2.2 % (render_bench, in one process, bunny,
+  // city2 and teapots, 7 paired rounds; morse-buildings within noise),
   // and reading the frame's components from the stored vectors by index
   // instead of Vec3's selects made the camera pass 0.5-3 % longer.
   WatertightRay& w = s->wray;
