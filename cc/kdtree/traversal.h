@@ -101,14 +101,15 @@
 //      hairball-small and rungholt-1m (one process 4 % slower on the last);
 //    - other tighter tolerances for shadow rays (ray_setup.h);
 //    - the near and far child chosen without a branch (an XOR mask from the
-//      direction's sign): renders 10-17 % longer on bunny, city2, teapots
+//      direction's sign): renders 10-13 % longer on bunny, city2, teapots
 //      and rungholt-1m (one process, the old code on a second, identical
 //      tree, 7 paired rounds). Predicted, the branch lets the next node's
 //      load start before the node's axis and the ray's sign are read;
 //    - for shadow rays searched from the end, a prefetch of the pushed near
-//      child (as front to back prefetches the far one): shadow pass 0.4-3.7 %
-//      shorter on five scenes, within twice the control's spread; with the
-//      first packet of a pushed leaf prefetched too, 1-3 % longer.
+//      child (as front to back prefetches the far one): shadow pass up to
+//      3.7 % shorter on four scenes and 0.6 % longer on rungholt-1m, within
+//      twice the control's spread; with the first packet of a pushed leaf
+//      prefetched too, 1-3 % longer.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
