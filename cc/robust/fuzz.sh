@@ -39,15 +39,16 @@ build() {
   case "$name" in
     traversal)
       srcs=(cc/robust/traversal_fuzzer.cc cc/robust/traversal_fuzz.cc $(lib cc/kdtree)
-            $(lib cc/geometry) cc/base/huge_pages.cc cc/base/read_file.cc)
-      libs=(-ltbb $ABSL) ;;
+            $(lib cc/geometry) cc/base/huge_pages.cc cc/base/read_file.cc
+            cc/base/block_tokens.cc)
+      libs=(-ltbb -lhwy $ABSL) ;;
     mesh)
       srcs=(cc/io/mesh_fuzzer.cc cc/io/mesh_fuzz.cc cc/io/mesh_loader.cc cc/io/mesh_input.cc
             cc/io/mesh_syntax.cc cc/io/ply_syntax.cc cc/base/read_file.cc)
       libs=(-lassimp -lz $ABSL) ;;
     env_file)
       srcs=(cc/robust/env_file_fuzzer.cc cc/kdtree/env_file.cc cc/kdtree/config.cc
-            cc/base/read_file.cc)
+            cc/base/read_file.cc cc/base/block_tokens.cc)
       libs=($ABSL) ;;
     *) echo "fuzz.sh: unknown fuzzer $name (traversal, mesh, env_file)" >&2; exit 2 ;;
   esac
