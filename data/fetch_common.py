@@ -60,7 +60,12 @@ def load_manifest(path=MANIFEST):
 def source_key(entry):
     """What the cached file depends on: a change in these refetches it."""
     keys = ("kind", "package", "path", "member", "npm_version", "convert", "url", "generator")
-    blob = json.dumps({k: entry.get(k) for k in keys}, sort_keys=True)
+    parts = {k: entry.get(k) for k in keys}
+    # The nodes a conversion leaves out, only where there are some (so the
+    # keys of entries without any, made before this field counted, stand).
+    if entry.get("skip_nodes"):
+        parts["skip_nodes"] = entry["skip_nodes"]
+    blob = json.dumps(parts, sort_keys=True)
     return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 

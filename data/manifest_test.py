@@ -294,6 +294,20 @@ class ManifestTest(unittest.TestCase):
                 order = [e["name"] for e in fetch.select(self.manifest, "full", [s["name"]])]
                 self.assertLess(order.index(name), order.index(s["name"]))
 
+    def test_source_key_follows_skip_nodes(self):
+        # A cached scene is made again when the nodes its conversion leaves
+        # out change; entries without any keep the key they had before
+        # skip_nodes counted (no refetch of every cached scene).
+        morse = next(s for s in self.scenes if s["name"] == "morse-trees")
+        without = dict(morse, skip_nodes=None)
+        self.assertNotEqual(fetch.source_key(morse), fetch.source_key(without))
+        self.assertNotEqual(fetch.source_key(morse),
+                            fetch.source_key(dict(morse, skip_nodes=["Other"])))
+        absent = {k: v for k, v in without.items() if k != "skip_nodes"}
+        self.assertEqual(fetch.source_key(without), fetch.source_key(absent))
+        bunny = next(s for s in self.scenes if s["name"] == "bunny")
+        self.assertEqual(fetch.source_key(bunny), "c84052b1c216a567")  # as before
+
     def test_every_report_scene_has_a_stand_in_in_full(self):
         # The full profile's Table 1: one stand-in (or the original) per report
         # scene, obtainable offline (not a url).
