@@ -269,7 +269,32 @@ def render_summary(records):
                 statistics.median(both_packet_all), min(both_packet_all), max(both_packet_all),
                 sum(p >= 0.7 for p in both_packet_all))
         out.append(line + ".")
+    out.extend(coverage_lines(rows))
     return "\n".join(out)
+
+
+# A scene whose camera rays hit fewer of its triangles than this share times
+# those few, not the scene (render_check.h CameraCoverage: morse-trees and
+# morse-buildings showed a sky box of 10 triangles until 2026-12-06).
+MIN_CAMERA_SHARE = 0.001
+
+
+def coverage_lines(rows):
+    """What the camera sees: the distinct triangles primary rays hit, as a share
+    of each scene's triangles (records from before 2026-12-06 have none)."""
+    share = {}
+    for (scene, n, _), by_t in rows.items():
+        one = by_t.get(1)
+        if one is not None and "camera_triangles" in one:
+            share[scene] = one["camera_triangles"] / n
+    if not share:
+        return []
+    few = sorted(s for s, x in share.items() if x < MIN_CAMERA_SHARE)
+    least = min(share, key=share.get)
+    return ["Camera coverage: primary rays hit a median of %.1f %% of a scene's triangles "
+            "(fewest: %.2f %% on %s); under %.1f %%: %s." % (
+                100 * statistics.median(share.values()), 100 * share[least], least,
+                100 * MIN_CAMERA_SHARE, ", ".join(few) if few else "none")]
 
 
 # Our single-ray modes and Embree's (render_bench.cc tracer names). The best

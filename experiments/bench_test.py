@@ -81,6 +81,23 @@ class BenchTest(unittest.TestCase):
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
 
+    def test_render_summary_names_scenes_whose_camera_sees_few_triangles(self):
+        def rec(scene, n, seen):
+            r = {"scene": scene, "n_tri": n, "preset": "sah-packet", "threads": 1,
+                 "provenance": provenance(),
+                 "tracers": {"kd": {"T_R_median": 0.2}, "embree": {"T_R_median": 0.1}},
+                 "validation": {"brute_force_mismatches": 0, "brute_force_checked": 301}}
+            if seen is not None:
+                r["camera_triangles"] = seen
+            return r
+        text = bench.render_summary([rec("box", 737856, 10), rec("bunny", 69666, 30000),
+                                     rec("old", 100000, None)])
+        self.assertIn("Camera coverage: primary rays hit a median of 21.5 % of a scene's "
+                      "triangles (fewest: 0.00 % on box); under 0.1 %: box.", text)
+        text = bench.render_summary([rec("bunny", 69666, 30000)])
+        self.assertIn("under 0.1 %: none.", text)
+        self.assertNotIn("Camera coverage", bench.render_summary([rec("old", 100000, None)]))
+
     def test_targets_summary_pairs_the_fastest_modes_per_round(self):
         def runs(*t):
             return {"T_R_runs": list(t)}

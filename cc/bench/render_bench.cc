@@ -333,6 +333,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       }
     }
     if (!replays.empty()) trace_only = bench::TraceOnly(entries, n_kd, n_traced, &tracers);
+    const bench::CameraCoverage coverage = bench::CameraCoverageOf(recorded.primary_hits);
     Json rec = {{"bench", "render"},
                 {"scene", scene},
                 {"n_tri", soup->size()},
@@ -344,6 +345,9 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"primary", recorded.primary.rays},
                 {"shadow", recorded.shadow.rays},
                 {"ao", recorded.ao.rays},
+                // What the camera sees (render_check.h CameraCoverage).
+                {"camera_hits", coverage.hits},
+                {"camera_triangles", coverage.triangles},
                 // The leaf packets' bytes (before 4c5d23d, also a second
                 // node array of 8 bytes a node).
                 {"leaf_layout_bytes", LeafLayoutBytes(*tree)},

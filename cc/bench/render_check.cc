@@ -101,5 +101,17 @@ absl::Status CheckVariant(const std::string& scene, const TriangleSoup& soup, co
   return absl::OkStatus();
 }
 
+CameraCoverage CameraCoverageOf(const std::vector<Hit>& primary_hits) {
+  std::vector<uint32_t> tris;
+  for (const Hit& h : primary_hits) {
+    if (h.hit()) tris.push_back(h.tri);
+  }
+  CameraCoverage c;
+  c.hits = tris.size();
+  std::sort(tris.begin(), tris.end());
+  c.triangles = static_cast<uint64_t>(std::unique(tris.begin(), tris.end()) - tris.begin());
+  return c;
+}
+
 }  // namespace bench
 }  // namespace kdtree

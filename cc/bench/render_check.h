@@ -49,6 +49,17 @@ absl::Status CheckVariant(const std::string& scene, const TriangleSoup& soup, co
                           const RenderOptions& base, const RenderResult& recorded,
                           const RenderVariant& v, uint64_t* mismatches);
 
+// What the camera sees: how many primary rays hit, and how many distinct
+// triangles they hit. A render whose camera rays hit a handful of triangles
+// times those, not the scene: until 2026-12-06 the camera of morse-trees and
+// morse-buildings (737,856 and 457,936 triangles) saw only the outside of a
+// sky box of 10 triangles around them (data/manifest.json, their notes).
+struct CameraCoverage {
+  uint64_t hits = 0;       // primary rays that hit a triangle
+  uint64_t triangles = 0;  // distinct triangles those hits are on
+};
+CameraCoverage CameraCoverageOf(const std::vector<Hit>& primary_hits);
+
 }  // namespace bench
 }  // namespace kdtree
 
