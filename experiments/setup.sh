@@ -6,6 +6,7 @@
 #   --with-report    : also LaTeX for the report PDF
 #   --with-blender   : also Blender (generates the report's scene 18, Suzanne)
 #   --with-slurm     : also SLURM and munge (a one-node cluster for the runner's test)
+#   --with-fuzz      : also clang and libFuzzer (cc/robust/fuzz.sh)
 set -euo pipefail
 
 PKGS=(
@@ -30,6 +31,7 @@ for a in "$@"; do
     --with-report) PKGS+=(texlive-latex-recommended texlive-fonts-recommended texlive-latex-extra latexmk lmodern poppler-utils) ;;
     --with-blender) PKGS+=(blender) ;;
     --with-slurm) PKGS+=(slurm-wlm munge) ;;
+    --with-fuzz) PKGS+=(clang libclang-rt-14-dev) ;;  # clang 14 and its libFuzzer, ASan, UBSan
     *) echo "setup.sh: unknown option '$a'" >&2; exit 2 ;;
   esac
 done

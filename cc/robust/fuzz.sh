@@ -3,12 +3,17 @@
 # record of every run (issue 24: long fuzzing runs, documented).
 #
 #   cc/robust/fuzz.sh [SECONDS] [FUZZER ...]
+#   cc/robust/fuzz.sh --build-only [FUZZER ...]
 #
 # SECONDS per fuzzer (default 600); FUZZER any of traversal, mesh, env_file
 # (default all three, one after the other). Needs clang 14 and libclang-rt
-# (libFuzzer, ASan, UBSan) beside the Debian packages of setup.sh. The Bazel
-# toolchain is gcc, which has no libFuzzer, so the targets are built here by
-# hand from the same sources. Corpora stay in out/fuzz/corpus/NAME (reused by
+# (libFuzzer, ASan, UBSan; `experiments/setup.sh --with-fuzz`) beside the
+# Debian packages of setup.sh. The Bazel toolchain is gcc, which has no
+# libFuzzer, so the targets are built here by clang, from the sources of the
+# Bazel library each target wraps (bazel query: a file added to one of its
+# dependencies is compiled here too). --build-only builds them and runs
+# nothing: experiments/test.sh does that, so a fuzzer that stops linking
+# fails the tests. Corpora stay in out/fuzz/corpus/NAME (reused by
 # the next run), logs in out/fuzz/NAME.log, crashes in out/fuzz/NAME/, and
 # one JSON line per run goes to out/fuzz/runs.jsonl (date, commit, fuzzer,
 # seconds, executions, exit code, findings). Nothing here is committed.
@@ -17,8 +22,15 @@
 # (traversal_fuzz_test, mesh_fuzz_test, env_file_fuzz_test).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-SECONDS_EACH="${1:-600}"
-shift || true
+BUILD_ONLY=0
+if [ "${1:-}" = --build-only ]; then
+  BUILD_ONLY=1
+  shift
+  SECONDS_EACH=0
+else
+  SECONDS_EACH="${1:-600}"
+  shift || true
+fi
 FUZZERS=("$@")
 [ ${#FUZZERS[@]} -eq 0 ] && FUZZERS=(traversal mesh env_file)
 if ! command -v clang++ > /dev/null || ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a > /dev/null 2>&1; then
@@ -28,31 +40,35 @@ fi
 OUT=out/fuzz
 mkdir -p "$OUT/bin"
 
-# Sources of a library directory: every .cc that is not a test, a fuzzer
-# target or a benchmark.
-lib() { ls "$1"/*.cc | grep -v -e '_test\.cc$' -e '_fuzzer\.cc$' -e '_bench\.cc$'; }
-ABSL="$(pkg-config --libs absl_statusor absl_str_format absl_strings absl_synchronization)"
+# The .cc files of a Bazel target and of everything it depends on in this
+# repository.
+sources_of() {
+  bazel query "kind('source file', deps($1))" 2> /dev/null |
+    grep '^//.*\.cc$' | sed 's#^//##; s#:#/#' || true
+}
+ABSL="$(pkg-config --libs absl_status absl_statusor absl_str_format absl_strings \
+  absl_synchronization absl_hash absl_raw_hash_set)"
+# Every system library any of the targets needs (unused ones cost nothing).
+LIBS=(-ltbb -lhwy -lassimp -lz $ABSL)
 FLAGS=(-std=c++17 -O1 -g -ffp-contract=off -fsanitize=fuzzer,address,undefined -I.)
+# --build-only checks that the targets build and link, which is all CI can
+# afford (the sanitizers' builds take 8 minutes on 2 cores): no sanitizers
+# but libFuzzer's, no optimisation.
+[ "$BUILD_ONLY" = 1 ] && FLAGS=(-std=c++17 -O0 -ffp-contract=off -fsanitize=fuzzer -I.)
 
 build() {
-  local name="$1"
+  local name="$1" main target
   case "$name" in
-    traversal)
-      srcs=(cc/robust/traversal_fuzzer.cc cc/robust/traversal_fuzz.cc $(lib cc/kdtree)
-            $(lib cc/geometry) cc/base/huge_pages.cc cc/base/read_file.cc
-            cc/base/block_tokens.cc)
-      libs=(-ltbb -lhwy $ABSL) ;;
-    mesh)
-      srcs=(cc/io/mesh_fuzzer.cc cc/io/mesh_fuzz.cc cc/io/mesh_loader.cc cc/io/mesh_input.cc
-            cc/io/mesh_syntax.cc cc/io/ply_syntax.cc cc/base/read_file.cc)
-      libs=(-lassimp -lz $ABSL) ;;
-    env_file)
-      srcs=(cc/robust/env_file_fuzzer.cc cc/kdtree/env_file.cc cc/kdtree/config.cc
-            cc/base/read_file.cc cc/base/block_tokens.cc)
-      libs=($ABSL) ;;
+    traversal) main=cc/robust/traversal_fuzzer.cc target=//cc/robust:traversal_fuzz ;;
+    mesh) main=cc/io/mesh_fuzzer.cc target=//cc/io:mesh_fuzz ;;
+    env_file) main=cc/robust/env_file_fuzzer.cc target=//cc/robust:env_file_fuzz ;;
     *) echo "fuzz.sh: unknown fuzzer $name (traversal, mesh, env_file)" >&2; exit 2 ;;
   esac
-  clang++ "${FLAGS[@]}" "${srcs[@]}" "${libs[@]}" -o "$OUT/bin/${name}_fuzzer"
+  local srcs
+  srcs=$(sources_of "$target")
+  [ -n "$srcs" ] || { echo "fuzz.sh: bazel query found no sources for $target" >&2; exit 1; }
+  # shellcheck disable=SC2086
+  clang++ "${FLAGS[@]}" "$main" $srcs "${LIBS[@]}" -o "$OUT/bin/${name}_fuzzer"
 }
 
 # Options per fuzzer: the largest input and the per-input time limit. (assimp,
@@ -65,6 +81,12 @@ options() {
     env_file) echo "-max_len=1024 -timeout=10" ;;
   esac
 }
+
+if [ "$BUILD_ONLY" = 1 ]; then
+  for name in "${FUZZERS[@]}"; do build "$name"; done
+  echo "fuzz.sh: built ${FUZZERS[*]} in $OUT/bin (nothing run)"
+  exit 0
+fi
 
 for name in "${FUZZERS[@]}"; do
   build "$name"
