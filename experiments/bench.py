@@ -275,26 +275,39 @@ def render_summary(records):
 
 # A scene whose camera rays hit fewer of its triangles than this share times
 # those few, not the scene (render_check.h CameraCoverage: morse-trees and
-# morse-buildings showed a sky box of 10 triangles until 2026-12-06).
+# morse-buildings showed a sky box of 10 triangles until 2026-12-06); one
+# whose shadow rays are nearly all occluded times a light that sees nothing
+# (a light inside a closed mesh, say).
 MIN_CAMERA_SHARE = 0.001
+MAX_OCCLUDED_SHARE = 0.95
 
 
 def coverage_lines(rows):
-    """What the camera sees: the distinct triangles primary rays hit, as a share
-    of each scene's triangles (records from before 2026-12-06 have none)."""
-    share = {}
+    """What the camera and the light see: the distinct triangles primary rays
+    hit, as a share of each scene's triangles, and the share of shadow rays
+    occluded (records from before 2026-12-06 have neither)."""
+    share, occluded = {}, {}
     for (scene, n, _), by_t in rows.items():
         one = by_t.get(1)
         if one is not None and "camera_triangles" in one:
             share[scene] = one["camera_triangles"] / n
-    if not share:
-        return []
-    few = sorted(s for s, x in share.items() if x < MIN_CAMERA_SHARE)
-    least = min(share, key=share.get)
-    return ["Camera coverage: primary rays hit a median of %.1f %% of a scene's triangles "
-            "(fewest: %.2f %% on %s); under %.1f %%: %s." % (
-                100 * statistics.median(share.values()), 100 * share[least], least,
-                100 * MIN_CAMERA_SHARE, ", ".join(few) if few else "none")]
+        if one is not None and "shadow_occluded" in one and one.get("shadow"):
+            occluded[scene] = one["shadow_occluded"] / one["shadow"]
+    out = []
+    if share:
+        few = sorted(s for s, x in share.items() if x < MIN_CAMERA_SHARE)
+        least = min(share, key=share.get)
+        out.append("Camera coverage: primary rays hit a median of %.1f %% of a scene's "
+                   "triangles (fewest: %.2f %% on %s); under %.1f %%: %s." % (
+                       100 * statistics.median(share.values()), 100 * share[least], least,
+                       100 * MIN_CAMERA_SHARE, ", ".join(few) if few else "none"))
+    if occluded:
+        dark = sorted(s for s, x in occluded.items() if x > MAX_OCCLUDED_SHARE)
+        most = max(occluded, key=occluded.get)
+        out.append("Shadow rays occluded: median %.0f %% (most: %.0f %% on %s); over %.0f %%: "
+                   "%s." % (100 * statistics.median(occluded.values()), 100 * occluded[most],
+                            most, 100 * MAX_OCCLUDED_SHARE, ", ".join(dark) if dark else "none"))
+    return out
 
 
 # Our single-ray modes and Embree's (render_bench.cc tracer names). The best

@@ -81,22 +81,29 @@ class BenchTest(unittest.TestCase):
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
 
-    def test_render_summary_names_scenes_whose_camera_sees_few_triangles(self):
-        def rec(scene, n, seen):
+    def test_render_summary_names_scenes_whose_camera_or_light_sees_little(self):
+        def rec(scene, n, seen, occluded=None):
             r = {"scene": scene, "n_tri": n, "preset": "sah-packet", "threads": 1,
-                 "provenance": provenance(),
+                 "provenance": provenance(), "shadow": 1000,
                  "tracers": {"kd": {"T_R_median": 0.2}, "embree": {"T_R_median": 0.1}},
                  "validation": {"brute_force_mismatches": 0, "brute_force_checked": 301}}
             if seen is not None:
                 r["camera_triangles"] = seen
+            if occluded is not None:
+                r["shadow_occluded"] = occluded
             return r
-        text = bench.render_summary([rec("box", 737856, 10), rec("bunny", 69666, 30000),
+        text = bench.render_summary([rec("box", 737856, 10, 990), rec("bunny", 69666, 30000, 200),
                                      rec("old", 100000, None)])
         self.assertIn("Camera coverage: primary rays hit a median of 21.5 % of a scene's "
                       "triangles (fewest: 0.00 % on box); under 0.1 %: box.", text)
-        text = bench.render_summary([rec("bunny", 69666, 30000)])
+        self.assertIn("Shadow rays occluded: median 60 % (most: 99 % on box); over 95 %: box.",
+                      text)
+        text = bench.render_summary([rec("bunny", 69666, 30000, 200)])
         self.assertIn("under 0.1 %: none.", text)
-        self.assertNotIn("Camera coverage", bench.render_summary([rec("old", 100000, None)]))
+        self.assertIn("over 95 %: none.", text)
+        old = bench.render_summary([rec("old", 100000, None)])
+        self.assertNotIn("Camera coverage", old)
+        self.assertNotIn("Shadow rays occluded", old)
 
     def test_targets_summary_pairs_the_fastest_modes_per_round(self):
         def runs(*t):

@@ -98,7 +98,8 @@ check(render == stdout, "render: the same records on stdout and in --out")
 check([r["threads"] for r in render] == [1, 2], "one render record per thread count")
 for r in render:
     for k in ["bench", "scene", "n_tri", "preset", "threads", "tile", "repeats", "rays", "primary",
-              "shadow", "ao", "camera_hits", "camera_triangles", "leaf_layout_bytes", "tracers",
+              "shadow", "ao", "camera_hits", "camera_triangles", "shadow_occluded",
+              "leaf_layout_bytes", "tracers",
               "ratio_kd_over_embree", "ratio_kd_over_embree_packet", "ratio_trace_only",
               "embree_native_ray16", "packet_counts", "validation", "timing", "provenance"]:
         check(k in r, "render record has no " + k)
@@ -107,6 +108,7 @@ for r in render:
     check(0 < r["camera_hits"] <= r["primary"], "render: camera hits")
     check(0 < r["camera_triangles"] <= min(r["n_tri"], r["camera_hits"]),
           "render: camera triangles")
+    check(0 <= r["shadow_occluded"] <= r["shadow"], "render: occluded shadow rays")
     # The packet variant's counting render: primary rays (closest hit) and
     # shadow rays (any hit), each lane counting as its single ray.
     counts = r["packet_counts"]

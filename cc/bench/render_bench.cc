@@ -345,9 +345,11 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"primary", recorded.primary.rays},
                 {"shadow", recorded.shadow.rays},
                 {"ao", recorded.ao.rays},
-                // What the camera sees (render_check.h CameraCoverage).
+                // What the camera sees (render_check.h CameraCoverage), and
+                // how many shadow rays are occluded.
                 {"camera_hits", coverage.hits},
                 {"camera_triangles", coverage.triangles},
+                {"shadow_occluded", recorded.s_hit},
                 // The leaf packets' bytes (before 4c5d23d, also a second
                 // node array of 8 bytes a node).
                 {"leaf_layout_bytes", LeafLayoutBytes(*tree)},
