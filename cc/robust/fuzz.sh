@@ -26,7 +26,6 @@ BUILD_ONLY=0
 if [ "${1:-}" = --build-only ]; then
   BUILD_ONLY=1
   shift
-  SECONDS_EACH=0
 else
   SECONDS_EACH="${1:-600}"
   shift || true
