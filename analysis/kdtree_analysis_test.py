@@ -34,8 +34,10 @@ class KdtreeAnalysisTest(testdata.KdtreeFixtureTest):
         aliases), except the Embree and fast-render ones when not run."""
         rec = testdata.kdrt_record(
             "alpha", "sah-packet", embree=testdata.embree(),
-            fast_render=testdata.fast_render([1.2], best=[0.9], robust=([0.8], [0.9], 0),
-                                             single=[0.8]))
+            fast_render=testdata.fast_render(
+                [1.2], best=[0.9], robust=([0.8], [0.9], 0), single=[0.8],
+                passes={p: [0.7] for p in ("camera_single", "shadow_single",
+                                           "camera_packets", "shadow_packets")}))
         missing = [name for name in kr.FIELDS
                    if kr.field(rec, name) is None]
         self.assertEqual(missing, [])

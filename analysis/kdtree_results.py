@@ -82,6 +82,17 @@ FIELDS = {
     "robust_single_ratio_runs": "fast_render.embree_robust.single_paired_ratio_runs",
     "robust_best_ratio": "fast_render.embree_robust.best_paired_ratio",
     "robust_best_ratio_runs": "fast_render.embree_robust.best_paired_ratio_runs",
+    # Where the gap is, per pass (kdrt_record.h AddPassComparisons): each
+    # pass's tracing time alone (less the replay of its mode in the same
+    # round), Embree's over ours, paired per round; single rays and packets.
+    "camera_single_ratio": "fast_render.passes.camera_single.paired_ratio",
+    "camera_single_ratio_runs": "fast_render.passes.camera_single.paired_ratio_runs",
+    "shadow_single_ratio": "fast_render.passes.shadow_single.paired_ratio",
+    "shadow_single_ratio_runs": "fast_render.passes.shadow_single.paired_ratio_runs",
+    "camera_packets_ratio": "fast_render.passes.camera_packets.paired_ratio",
+    "camera_packets_ratio_runs": "fast_render.passes.camera_packets.paired_ratio_runs",
+    "shadow_packets_ratio": "fast_render.passes.shadow_packets.paired_ratio",
+    "shadow_packets_ratio_runs": "fast_render.passes.shadow_packets.paired_ratio_runs",
     "robust_wrong_primary": "fast_render.embree_robust.wrong.primary",
     "robust_wrong_shadow": "fast_render.embree_robust.wrong.shadow",
     "all_rays_per_s": "all_rays_per_s",

@@ -35,6 +35,7 @@ from analysis import context  # noqa: E402
 from analysis import cost_images  # noqa: E402
 from analysis import embree  # noqa: E402
 from analysis import embree_build  # noqa: E402
+from analysis import embree_passes  # noqa: E402
 from analysis import figures  # noqa: E402
 from analysis import gallery  # noqa: E402
 from analysis import kdtree_figures  # noqa: E402
@@ -65,6 +66,7 @@ GENERATORS = [
     claims,
     embree,
     embree_build,
+    embree_passes,
     tree_memory,
     accuracy,
     robustness,

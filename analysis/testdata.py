@@ -263,12 +263,14 @@ def kdrt_record(scene, preset, added=None, **over):
     return rec
 
 
-def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None):
+def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=None):
     """kdrt's "fast_render" object with its paired ratios to Embree (and,
     with `best`, Embree's packets and the best-mode ratios per round; with
     `robust`, (single-ray ratios, best-mode ratios, wrong shadow rays) of
     Embree built with RTC_SCENE_FLAG_ROBUST; with `single`, our other
-    single-ray mode and Embree's single rays over the faster of ours)."""
+    single-ray mode and Embree's single rays over the faster of ours; with
+    `passes`, {pass: [ratio per round]} for the passes camera_single,
+    shadow_single, camera_packets and shadow_packets)."""
     ratios = list(ratios)
     out = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
            "shadow_s": t_r / 2, "packet_kernel": "AVX3"}
@@ -297,6 +299,15 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None):
             "best_paired_ratio_runs": list(best_r),
             "best_paired_ratio": statistics.median(best_r), "disagreements": wrong,
             "wrong": {"primary": 0, "shadow": wrong, "ao": 0}}
+    if passes is not None:
+        n = len(ratios)
+        out["passes"] = {
+            name: {"paired_ratio": statistics.median(runs) if runs else None,
+                   "paired_ratio_runs": list(runs)}
+            for name, runs in passes.items()}
+        for key in ("replay_primary_s_runs", "replay_shadow_s_runs",
+                    "replay_packets_primary_s_runs", "replay_packets_shadow_s_runs"):
+            out["passes"][key] = [t_r / 8] * n
     return out
 
 

@@ -28,6 +28,15 @@ inline std::vector<double> PairedRatios(const std::vector<double>& num,
   return out;
 }
 
+// a[i] - b[i] for each round both have: a tracer's render less the replay of
+// its mode in the same round (replay_tracer.h), its tracing time alone.
+inline std::vector<double> LessPerRound(const std::vector<double>& a,
+                                        const std::vector<double>& b) {
+  std::vector<double> out;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) out.push_back(a[i] - b[i]);
+  return out;
+}
+
 }  // namespace kdtree
 
 #endif  // KDTREE_CC_BASE_MEDIAN_H_

@@ -48,7 +48,7 @@ Json TraceOnly(const std::vector<Entry>& entries, size_t n_kd, size_t n_traced, 
   for (size_t k = 0; k < n_traced; ++k) {
     const Entry& e = entries[k];
     const Entry& replay = entries[n_traced + (e.packets ? 1 : 0)];
-    for (size_t i = 0; i < e.runs.size(); ++i) trace[k].push_back(e.runs[i] - replay.runs[i]);
+    trace[k] = LessPerRound(e.runs, replay.runs);
     (*tracers)[e.name]["trace_s_median"] = Median(trace[k]);
   }
   Json out = Json::object();

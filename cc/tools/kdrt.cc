@@ -60,6 +60,7 @@
 #include "cc/render/png.h"
 #include "cc/render/ray_dump.h"
 #include "cc/render/renderer.h"
+#include "cc/render/replay_tracer.h"
 #include "cc/render/cost_image.h"
 #include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
@@ -266,10 +267,10 @@ absl::Status Run() {
   std::vector<Lane> lanes;
   lanes.push_back({"kd-tree", &kd, ropt});
   const bool fast = absl::GetFlag(FLAGS_fast_render);
+  RenderOptions fo = ropt;
+  fo.packets = true;
+  fo.skip_origin = true;
   if (fast) {
-    RenderOptions fo = ropt;
-    fo.packets = true;
-    fo.skip_origin = true;
     lanes.push_back({kFastLane, &kd, fo});
     // Our other single-ray mode: the fast mode's shadow rays, one ray at a
     // time (single rays against single rays takes the faster per round).
@@ -299,6 +300,16 @@ absl::Status Run() {
     robust = *std::move(e);
     lanes.push_back({kEmbreeRobustLane, robust.get(), ropt});
     lanes.push_back({kEmbreeRobustPacketsLane, robust.get(), embree_packets});
+  }
+  // The renderer's own work, single rays and packets: the kd-tree's answers
+  // replayed (replay_tracer.h; one thread only), so that each pass's tracing
+  // time alone can be compared with Embree's (record fast_render.passes).
+  ReplayTracer replay_single(kd), replay_packets(kd);
+  if (embree_timed && fast && threads == 1) {
+    lanes.push_back({kReplayLane, &replay_single, ropt});
+    lanes.back().replay = &replay_single;
+    lanes.push_back({kReplayPacketsLane, &replay_packets, fo});
+    lanes.back().replay = &replay_packets;
   }
   progress.Phase("stats", "recording rays");
   RenderOptions rec_opt = ropt;
@@ -343,7 +354,11 @@ absl::Status Run() {
   }
   recorded.rays = std::vector<RayRecord>();
   for (Lane& l : lanes) {
-    if (l.tracer == &kd) l.last = recorded;  // to reproduce
+    if (l.tracer == &kd || l.replay != nullptr) l.last = recorded;  // to reproduce
+    if (l.replay != nullptr) {  // its answers, recorded in its mode (its warm-up)
+      l.replay->Record();
+      l.warmup_s = Render(*soup, *l.replay, view, l.opt).seconds;
+    }
   }
   recorded = RenderResult();
   const Lane& kl = lanes.front();
@@ -396,6 +411,7 @@ absl::Status Run() {
   rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
   AddComparisons(lanes, fast, use_embree ? &*quality : nullptr, embree_timed, b, disagreements, pixels, &rec);
   AddRobustEmbree(lanes, robust_disagreements, &rec);
+  AddPassComparisons(lanes, &rec);
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();
   rec["provenance"] = prov.ToJson();

@@ -190,6 +190,59 @@ void AddRobustEmbree(const std::vector<Lane>& lanes, const Json& disagreements, 
       {"disagreements", disagreements["total"]}, {"wrong", wrong}};
 }
 
+namespace {
+
+// A pass's times per round: primary (camera) or shadow rays.
+const std::vector<double>& PassRuns(const Lane& l, bool shadow) {
+  return shadow ? l.timed.t_shadow : l.timed.t_primary;
+}
+
+// Per round, the fastest tracing time of `lanes` on the pass, each lane's
+// time less `replay`'s.
+std::vector<double> FastestTracing(const std::vector<const Lane*>& lanes, const Lane& replay,
+                                   bool shadow) {
+  std::vector<double> out;
+  for (const Lane* l : lanes) {
+    const std::vector<double> t = LessPerRound(PassRuns(*l, shadow), PassRuns(replay, shadow));
+    if (out.empty()) out = t;
+    for (size_t i = 0; i < out.size() && i < t.size(); ++i) out[i] = std::min(out[i], t[i]);
+  }
+  return out;
+}
+
+Json PassRatio(const std::vector<double>& theirs, const std::vector<double>& ours) {
+  std::vector<double> runs;
+  for (size_t i = 0; i < theirs.size() && i < ours.size(); ++i) {
+    if (theirs[i] > 0 && ours[i] > 0) runs.push_back(theirs[i] / ours[i]);
+  }
+  return {{"paired_ratio", runs.empty() ? Json() : Json(Median(runs))},
+          {"paired_ratio_runs", runs}};
+}
+
+}  // namespace
+
+void AddPassComparisons(const std::vector<Lane>& lanes, Json* rec) {
+  const Lane* rs = FindLane(lanes, kReplayLane);
+  const Lane* rp = FindLane(lanes, kReplayPacketsLane);
+  const Lane* el = FindLane(lanes, kEmbreeLane);
+  const Lane* ep = FindLane(lanes, kEmbreePacketsLane);
+  const Lane* fl = FindLane(lanes, kFastLane);
+  if (!rs || !rp || !el || !ep || !fl || (*rec)["fast_render"].is_null()) return;
+  Json passes = Json::object();
+  for (const bool shadow : {false, true}) {
+    const std::string pass = shadow ? "shadow" : "camera";
+    passes[pass + "_single"] = PassRatio(FastestTracing({el}, *rs, shadow),
+                                         FastestTracing(OurSingleLanes(lanes), *rs, shadow));
+    passes[pass + "_packets"] =
+        PassRatio(FastestTracing({ep}, *rp, shadow), FastestTracing({fl}, *rp, shadow));
+  }
+  passes["replay_primary_s_runs"] = rs->timed.t_primary;
+  passes["replay_shadow_s_runs"] = rs->timed.t_shadow;
+  passes["replay_packets_primary_s_runs"] = rp->timed.t_primary;
+  passes["replay_packets_shadow_s_runs"] = rp->timed.t_shadow;
+  (*rec)["fast_render"]["passes"] = std::move(passes);
+}
+
 uint64_t Fnv64(const std::vector<uint8_t>& bytes) { return FnvBytes(bytes.data(), bytes.size()); }
 
 }  // namespace kdtree

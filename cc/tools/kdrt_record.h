@@ -55,6 +55,10 @@ inline constexpr char kEmbreeLane[] = "embree";
 inline constexpr char kEmbreePacketsLane[] = "embree packets";
 inline constexpr char kEmbreeRobustLane[] = "embree robust";
 inline constexpr char kEmbreeRobustPacketsLane[] = "embree robust packets";
+// The kd-tree's answers replayed (replay_tracer.h), single rays and in the
+// fast mode's packets: the renderer's own work on each pass.
+inline constexpr char kReplayLane[] = "replay";
+inline constexpr char kReplayPacketsLane[] = "replay packets";
 
 // Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
 // "fast_render": lanes are the timed lanes (the kd-tree's first; with `fast`
@@ -76,6 +80,16 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
 // Disagreements::ToJson against the kd-tree).
 void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_json& disagreements,
                      nlohmann::ordered_json* rec);
+
+// With the replay lanes (kReplayLane, kReplayPacketsLane, one thread) and
+// Embree's two: adds fast_render.passes, where the gap is, per pass (camera
+// rays, shadow rays): each lane's pass time less its mode's replay in the
+// same round (its tracing time alone), Embree's over ours, paired per round;
+// single rays (Embree's against the faster of our two single-ray lanes) and
+// packets (Embree's 16-ray packets against the fast mode). A round where
+// either tracing time is not positive (a pass too short to time) gives no
+// ratio.
+void AddPassComparisons(const std::vector<Lane>& lanes, nlohmann::ordered_json* rec);
 
 // FNV-1a 64 of the image's bytes (image_fnv64).
 uint64_t Fnv64(const std::vector<uint8_t>& bytes);

@@ -140,5 +140,16 @@ check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, s, q) for e, p, k, s,
           f["T_R_runs"])],
       "best mode against best mode, per round")
 check(rob["wrong"]["primary"] == 0 and rob["disagreements"] >= 0, "robust Embree's answers")
+ps = f["passes"]
+check(all(len(ps[k]) == 2 for k in ("replay_primary_s_runs", "replay_shadow_s_runs",
+                                     "replay_packets_primary_s_runs",
+                                     "replay_packets_shadow_s_runs")),
+      "the replays timed in the same two rounds")
+for name in ("camera_single", "shadow_single", "camera_packets", "shadow_packets"):
+    runs = ps[name]["paired_ratio_runs"]
+    # On this tiny scene a pass's tracing time may be within the replay's
+    # noise: such rounds give no ratio.
+    check(len(runs) <= 2 and all(x > 0 for x in runs)
+          and (ps[name]["paired_ratio"] is None) == (not runs), name + " paired per round")
 print("ok")
 PY

@@ -21,7 +21,11 @@ absl::Status TimeRounds(const TriangleSoup& soup, const View& view, int repeats,
     double round_s = 0;
     for (Lane& lane : *lanes) {
       if (step) step(absl::StrFormat("round %d/%d: %s", i + 1, repeats, lane.name));
+      if (lane.replay != nullptr) lane.replay->Rewind();
       RenderResult r = Render(soup, *lane.tracer, view, lane.opt);
+      if (lane.replay != nullptr && lane.replay->overran()) {
+        return absl::InternalError(absl::StrCat(lane.name, ": the render ran past its recorded answers"));
+      }
       const bool first = lane.last.rgb.empty();
       if (!first && (r.rgb != lane.last.rgb || r.p_hit != lane.last.p_hit || r.s_hit != lane.last.s_hit)) {
         return absl::InternalError(absl::StrCat(lane.name, ": a timed render differs from the one it must reproduce"));

@@ -16,6 +16,7 @@
 
 #include "cc/geometry/triangle.h"
 #include "cc/render/renderer.h"
+#include "cc/render/replay_tracer.h"
 #include "cc/render/tracer.h"
 #include "cc/render/view.h"
 #include "nlohmann/json.hpp"
@@ -38,6 +39,9 @@ struct Lane {
   std::string name;  // for the progress line
   const Tracer* tracer = nullptr;
   RenderOptions opt;
+  // A replay of recorded answers (the renderer's own work alone): rewound
+  // before each timed render, which must not run past the recording.
+  ReplayTracer* replay = nullptr;
   double warmup_s = 0;  // the untimed warm-up pass (set by the caller)
   RenderResult last;    // what every timed render must reproduce (image, hit
                         // counts); empty: the first timed render sets it
