@@ -37,7 +37,7 @@ WORDS = {"camera_single": "camera rays one at a time",
          "camera_packets": "camera rays in packets",
          "shadow_packets": "shadow rays in packets"}
 MACROS = ["EmbreePass%s%s" % (name, what) for _, name, _ in PASSES
-          for what in ("Median", "Scenes")] + ["EmbreePassWeakest"]
+          for what in ("Median", "Scenes")] + ["EmbreePassWeakest", "EmbreePassWeakestMedian"]
 
 
 def _cell(r, prefix):
@@ -98,7 +98,7 @@ def render(data):
 def pass_macros(data):
     """Per pass the median over the scenes of its paired medians and how many
     scenes have one; EmbreePassWeakest names the pass with the lowest
-    median (``no pass'' without data)."""
+    median (``no pass'' without data), EmbreePassWeakestMedian gives it."""
     out, medians = {}, {}
     for prefix, name, _ in PASSES:
         values = [r[prefix][0] for r in data if r[prefix] is not None]
@@ -109,6 +109,8 @@ def pass_macros(data):
         out["EmbreePass%sScenes" % name] = (str(len(values)), False)
     weakest = min(medians, key=medians.get) if medians else None
     out["EmbreePassWeakest"] = (WORDS[weakest] if weakest else "no pass", False)
+    out["EmbreePassWeakestMedian"] = (
+        "%.2f" % medians[weakest] if weakest else latex.DASH, True)
     return out
 
 

@@ -30,6 +30,7 @@ class EmbreePassesTest(testdata.KdtreeFixtureTest):
         self.assertEqual(macros["EmbreePassCameraPacketsMedian"][0], "0.61")
         self.assertEqual(macros["EmbreePassShadowPacketsMedian"][0], "0.90")
         self.assertEqual(macros["EmbreePassWeakest"][0], "shadow rays one at a time")
+        self.assertEqual(macros["EmbreePassWeakestMedian"][0], "0.55")
         table = self.read("embree_passes.tex")
         self.assertIn("0.80 {\\scriptsize (0.70--0.90)}", table)
         self.assertIn("0.55 {\\scriptsize (0.50--0.60)}", table)
