@@ -129,8 +129,12 @@ std::vector<const Lane*> OurLanes(const std::vector<Lane>& lanes, const Lane& fa
 }
 
 Json LaneTimes(const Lane& l) {
-  return {{"T_R", Median(l.timed.t_r)}, {"T_R_runs", l.timed.t_r},
-          {"primary_s", Median(l.timed.t_primary)}, {"shadow_s", Median(l.timed.t_shadow)}};
+  return {{"T_R", Median(l.timed.t_r)},
+          {"T_R_runs", l.timed.t_r},
+          {"primary_s", Median(l.timed.t_primary)},
+          {"shadow_s", Median(l.timed.t_shadow)},
+          {"primary_s_runs", l.timed.t_primary},
+          {"shadow_s_runs", l.timed.t_shadow}};
 }
 
 }  // namespace
@@ -198,15 +202,20 @@ const std::vector<double>& PassRuns(const Lane& l, bool shadow) {
 }
 
 // Per round, the fastest tracing time of `lanes` on the pass, each lane's
-// time less `replay`'s.
+// time less `replay`'s; a time that is not positive (within the noise of the
+// replay) is left out, and a round with none is 0 (no ratio). As
+// experiments/bench.py's per_round_ratio does with render_bench's records.
 std::vector<double> FastestTracing(const std::vector<const Lane*>& lanes, const Lane& replay,
                                    bool shadow) {
-  std::vector<double> out;
+  std::vector<double> out(PassRuns(replay, shadow).size(), INFINITY);
   for (const Lane* l : lanes) {
     const std::vector<double> t = LessPerRound(PassRuns(*l, shadow), PassRuns(replay, shadow));
-    if (out.empty()) out = t;
-    for (size_t i = 0; i < out.size() && i < t.size(); ++i) out[i] = std::min(out[i], t[i]);
+    out.resize(std::min(out.size(), t.size()));
+    for (size_t i = 0; i < out.size(); ++i) {
+      if (t[i] > 0) out[i] = std::min(out[i], t[i]);
+    }
   }
+  for (double& x : out) x = x == INFINITY ? 0 : x;
   return out;
 }
 

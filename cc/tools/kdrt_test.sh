@@ -145,11 +145,29 @@ check(all(len(ps[k]) == 2 for k in ("replay_primary_s_runs", "replay_shadow_s_ru
                                      "replay_packets_primary_s_runs",
                                      "replay_packets_shadow_s_runs")),
       "the replays timed in the same two rounds")
-for name in ("camera_single", "shadow_single", "camera_packets", "shadow_packets"):
-    runs = ps[name]["paired_ratio_runs"]
-    # On this tiny scene a pass's tracing time may be within the replay's
-    # noise: such rounds give no ratio.
-    check(len(runs) <= 2 and all(x > 0 for x in runs)
-          and (ps[name]["paired_ratio"] is None) == (not runs), name + " paired per round")
+def fastest(lanes, replay):
+    # Per round, the fastest positive tracing time (lane less replay); 0: none.
+    out = []
+    for i, r in enumerate(replay):
+        t = [lane[i] - r for lane in lanes if lane[i] - r > 0]
+        out.append(min(t) if t else 0.0)
+    return out
+def ratios(theirs, ours):
+    return [a / b for a, b in zip(theirs, ours) if a > 0 and b > 0]
+for key, p in (("primary", "camera"), ("shadow", "shadow")):
+    emb, kd = fe["embree"]["effects"][key]["seconds_runs"], fe["effects"][key]["seconds_runs"]
+    single = ratios(fastest([emb], ps["replay_%s_s_runs" % key]),
+                    fastest([kd, so[key + "_s_runs"]], ps["replay_%s_s_runs" % key]))
+    packets = ratios(fastest([f["embree_packets"][key + "_s_runs"]],
+                             ps["replay_packets_%s_s_runs" % key]),
+                     fastest([f[key + "_s_runs"]], ps["replay_packets_%s_s_runs" % key]))
+    for name, want in ((p + "_single", single), (p + "_packets", packets)):
+        runs = ps[name]["paired_ratio_runs"]
+        # On this tiny scene a pass's tracing time may be within the
+        # replay's noise: such rounds give no ratio.
+        check(len(runs) == len(want) <= 2
+              and all(abs(a - b) <= 1e-12 * abs(b) for a, b in zip(runs, want))
+              and (ps[name]["paired_ratio"] is None) == (not runs),
+              name + ": each lane's pass less its replay, Embree's over ours per round")
 print("ok")
 PY
