@@ -78,7 +78,9 @@ HWY_INLINE void ScalarTest(const PacketRays& p, const Group& g, const float* pac
 // leaf packet (T_R 0.995-1.015 old over new, the control 0.998-1.009), and for
 // lanes sharing their origin (camera packets) moving the triangle to it once
 // in scalars (primary pass 2-9 % slower: the broadcasts cost more than the
-// vector subtractions they save).
+// vector subtractions they save); and the rejection of a leaf packet's four
+// triangles computed before any branch on its result (T_R 0.995-1.007 old
+// over new on six scenes: no change).
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
                          const Group& g, size_t base, uint32_t first, uint32_t* lanes,

@@ -113,6 +113,24 @@ HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
   *found = (*found & ~(kFull << base)) | (sub_found << base);
 }
 
+// Where the kernel's time goes (in-process A/B as below, 7 paired rounds,
+// bunny, city2, courtyard-1m, fforest, lost-empire, hairball-small,
+// 2026-12-06; tracing time alone, each pass less its replay): traced a second
+// time right after the first, a packet costs 0.42-0.56 of its first trace
+// (camera pass; shadow pass 0.42-0.62); traced after the AVX3 kernel (the
+// same memory, other branch addresses), 0.72-0.84 (shadow 0.66-1.04). So on
+// these scenes about a fifth of the first trace waits on memory and a
+// further fifth to a third on branch prediction; the vector arithmetic is
+// not the bottleneck (the leaf test's rejection computed twice adds only
+// 3-10 %). Tried and not kept: prefetching a pushed child's node (T_R
+// 0.995-1.012 old over new) and, at each inner node, the first packet of a
+// left child that is a leaf (0.994-1.004), against 0.994-1.007 with the same
+// code on both sides; packets of 32 rays (two 4x4 blocks, two 16-lane
+// vectors descending together): lanes per inner step 13.5 -> 24.3 on bunny,
+// inner steps per ray nearly halved, yet the camera pass unchanged there
+// (22.2 -> 22.3 ms) and within the noise between processes against Embree's
+// packets on city2, courtyard-1m and fforest.
+//
 // The group's lanes, kV vectors of Lanes(d) (all kLanes of them: one vector
 // on AVX-512, two on AVX2, four on SSE4), descending together: a node is
 // loaded and decided once for all of them, and the leaf tests run a vector at
