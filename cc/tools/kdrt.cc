@@ -60,11 +60,11 @@
 #include "cc/render/png.h"
 #include "cc/render/ray_dump.h"
 #include "cc/render/renderer.h"
-#include "cc/render/replay_tracer.h"
 #include "cc/render/cost_image.h"
 #include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
+#include "cc/tools/kdrt_lanes.h"
 #include "cc/tools/kdrt_limits.h"
 #include "cc/tools/kdrt_record.h"
 #include "cc/tools/paths.h"
@@ -255,62 +255,23 @@ absl::Status Run() {
   RenderOptions ropt;
   ropt.threads = threads;
   ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
-  // The renders: the kd-tree, optionally its fastest mode (packets of 4x4
-  // pixels, shadow rays leaving their origin triangle untested and searched
-  // from the light: RenderOptions::skip_origin) and those shadow rays one at
-  // a time, optionally Embree. Their warm-ups are the untimed passes every run makes anyway over
-  // the frame's rays: the kd-tree's recording render (the rays and hits for
-  // the counting pass, the comparison and the dump), and the comparison pass
-  // that traces the recorded rays through Embree; the fast modes run on the
-  // warmed tree, and each of their timed renders must reproduce the
+  // The renders (kdrt_lanes.h). Their warm-ups are the untimed passes every
+  // run makes anyway over the frame's rays: the kd-tree's recording render
+  // (the rays and hits for the counting pass, the comparison and the dump),
+  // the comparison passes that trace the recorded rays through Embree (and
+  // the robust Embree), and the replays' recording renders; the fast modes
+  // run on the warmed tree, and each timed render must reproduce the
   // kd-tree's image and hit counts.
-  std::vector<Lane> lanes;
-  lanes.push_back({"kd-tree", &kd, ropt});
-  const bool fast = absl::GetFlag(FLAGS_fast_render);
-  RenderOptions fo = ropt;
-  fo.packets = true;
-  fo.skip_origin = true;
-  if (fast) {
-    lanes.push_back({kFastLane, &kd, fo});
-    // Our other single-ray mode: the fast mode's shadow rays, one ray at a
-    // time (single rays against single rays takes the faster per round).
-    RenderOptions so = ropt;
-    so.skip_origin = true;
-    lanes.push_back({kSingleOriginLane, &kd, so});
-  }
-  const size_t embree_lane = lanes.size();
-  if (embree_timed) lanes.push_back({kEmbreeLane, b.embree.get(), ropt});
-  // Embree's packet calls on the same 4x4 blocks (rtcIntersect16 with the
-  // coherent flag, rtcOccluded16): with them, Embree's best mode per round
-  // is the faster of its two (#23's fair bar; record fast_render). Like the
-  // kd-tree's fast mode, it has no warm-up pass of its own: it runs on the
-  // structure the single-ray passes warmed.
-  RenderOptions embree_packets = ropt;
-  embree_packets.packets = true;
-  if (embree_timed && fast) lanes.push_back({kEmbreePacketsLane, b.embree.get(), embree_packets});
-  // Embree's robust setting (embree_tracer.h EmbreeOptions::robust): its
-  // lanes, after the others, warmed by its comparison pass below.
-  std::unique_ptr<EmbreeTracer> robust;
-  const size_t robust_lane = lanes.size();
-  if (embree_timed && fast && absl::GetFlag(FLAGS_embree_robust)) {
-    EmbreeOptions ro = eo;
-    ro.robust = true;
-    absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(*soup, ro);
-    if (!e.ok()) return e.status();
-    robust = *std::move(e);
-    lanes.push_back({kEmbreeRobustLane, robust.get(), ropt});
-    lanes.push_back({kEmbreeRobustPacketsLane, robust.get(), embree_packets});
-  }
-  // The renderer's own work, single rays and packets: the kd-tree's answers
-  // replayed (replay_tracer.h; one thread only), so that each pass's tracing
-  // time alone can be compared with Embree's (record fast_render.passes).
-  ReplayTracer replay_single(kd), replay_packets(kd);
-  if (embree_timed && fast && threads == 1) {
-    lanes.push_back({kReplayLane, &replay_single, ropt});
-    lanes.back().replay = &replay_single;
-    lanes.push_back({kReplayPacketsLane, &replay_packets, fo});
-    lanes.back().replay = &replay_packets;
-  }
+  LaneChoice choice;
+  choice.fast = absl::GetFlag(FLAGS_fast_render);
+  choice.embree_timed = embree_timed;
+  choice.embree_robust = absl::GetFlag(FLAGS_embree_robust);
+  choice.render = ropt;
+  absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, kd, b.embree.get(), eo, choice);
+  if (!lane_set.ok()) return lane_set.status();
+  std::vector<Lane>& lanes = lane_set->lanes;
+  const bool fast = choice.fast;
+  EmbreeTracer* const robust = lane_set->robust.get();
   progress.Phase("stats", "recording rays");
   RenderOptions rec_opt = ropt;
   rec_opt.record_rays = true;
@@ -335,13 +296,14 @@ absl::Status Run() {
     for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
     progress.Phase("embree comparison (embree warm-up)");
     if (embree_timed) {
-      lanes[embree_lane].warmup_s = progress.phases()["embree comparison (embree warm-up)"].get<double>();
+      lanes[lane_set->embree_lane].warmup_s =
+          progress.phases()["embree comparison (embree warm-up)"].get<double>();
     }
     if (robust != nullptr) {
       progress.Step("comparing with embree (robust)");
       robust_disagreements = CompareTracers(recorded.rays, *soup, kd, *robust).ToJson();
       progress.Phase("embree robust comparison (its warm-up)");
-      lanes[robust_lane].warmup_s =
+      lanes[lane_set->robust_lane].warmup_s =
           progress.phases()["embree robust comparison (its warm-up)"].get<double>();
     }
   }
@@ -367,7 +329,7 @@ absl::Status Run() {
   progress.Phase("waiting for the timing lock");
   if (!(st = TimeRounds(*soup, view, repeats, budget_s, &lanes, step)).ok()) return st;
   progress.Phase("timed renders");
-  robust.reset();  // before the timed builds, as they free the other tracers
+  lane_set->robust.reset();  // before the timed builds, as they free the other tracers
   // The lanes' tracers (the warm trees) are freed by the timed builds.
   st = TimeBuildRounds(*soup, rc->config, embree_timed ? &eo : nullptr, repeats, budget_s, step, &b);
   lock.Release();

@@ -1,0 +1,52 @@
+#include "cc/tools/kdrt_lanes.h"
+
+#include <utility>
+
+#include "cc/tools/kdrt_record.h"
+
+namespace kdtree {
+
+absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const Tracer& kd,
+                                  const EmbreeTracer* embree, const EmbreeOptions& eo,
+                                  const LaneChoice& choice) {
+  LaneSet set;
+  std::vector<Lane>& lanes = set.lanes;
+  const RenderOptions& ropt = choice.render;
+  lanes.push_back({"kd-tree", &kd, ropt});
+  RenderOptions fo = ropt;
+  fo.packets = true;
+  fo.skip_origin = true;
+  if (choice.fast) {
+    lanes.push_back({kFastLane, &kd, fo});
+    RenderOptions so = ropt;
+    so.skip_origin = true;
+    lanes.push_back({kSingleOriginLane, &kd, so});
+  }
+  const bool timed = choice.embree_timed && embree != nullptr;
+  set.embree_lane = lanes.size();
+  if (timed) lanes.push_back({kEmbreeLane, embree, ropt});
+  RenderOptions embree_packets = ropt;
+  embree_packets.packets = true;
+  if (timed && choice.fast) lanes.push_back({kEmbreePacketsLane, embree, embree_packets});
+  set.robust_lane = lanes.size();
+  if (timed && choice.fast && choice.embree_robust) {
+    EmbreeOptions ro = eo;
+    ro.robust = true;
+    absl::StatusOr<std::unique_ptr<EmbreeTracer>> e = EmbreeTracer::Create(soup, ro);
+    if (!e.ok()) return e.status();
+    set.robust = *std::move(e);
+    lanes.push_back({kEmbreeRobustLane, set.robust.get(), ropt});
+    lanes.push_back({kEmbreeRobustPacketsLane, set.robust.get(), embree_packets});
+  }
+  if (timed && choice.fast && ropt.threads == 1) {
+    set.replay_single = std::make_unique<ReplayTracer>(kd);
+    set.replay_packets = std::make_unique<ReplayTracer>(kd);
+    lanes.push_back({kReplayLane, set.replay_single.get(), ropt});
+    lanes.back().replay = set.replay_single.get();
+    lanes.push_back({kReplayPacketsLane, set.replay_packets.get(), fo});
+    lanes.back().replay = set.replay_packets.get();
+  }
+  return set;
+}
+
+}  // namespace kdtree
