@@ -31,13 +31,13 @@ PASSES = [("camera_single", "CameraSingle", "camera"),
           ("shadow_single", "ShadowSingle", "shadow"),
           ("camera_packets", "CameraPackets", "camera"),
           ("shadow_packets", "ShadowPackets", "shadow")]
-# The passes in words (macro EmbreePassWeakest).
+# The passes in words (macro EmbreePassWeakestClause).
 WORDS = {"camera_single": "camera rays one at a time",
          "shadow_single": "shadow rays one at a time",
          "camera_packets": "camera rays in packets",
          "shadow_packets": "shadow rays in packets"}
 MACROS = ["EmbreePass%s%s" % (name, what) for _, name, _ in PASSES
-          for what in ("Median", "Scenes")] + ["EmbreePassWeakest", "EmbreePassWeakestMedian"]
+          for what in ("Median", "Scenes")] + ["EmbreePassWeakestClause"]
 
 
 def _cell(r, prefix):
@@ -97,8 +97,8 @@ def render(data):
 
 def pass_macros(data):
     """Per pass the median over the scenes of its paired medians and how many
-    scenes have one; EmbreePassWeakest names the pass with the lowest
-    median (``no pass'' without data), EmbreePassWeakestMedian gives it."""
+    scenes have one; EmbreePassWeakestClause names the pass with the lowest
+    median and gives it (or says that no run recorded the passes)."""
     out, medians = {}, {}
     for prefix, name, _ in PASSES:
         values = [r[prefix][0] for r in data if r[prefix] is not None]
@@ -108,9 +108,9 @@ def pass_macros(data):
             "%.2f" % medians[prefix] if values else latex.DASH, True)
         out["EmbreePass%sScenes" % name] = (str(len(values)), False)
     weakest = min(medians, key=medians.get) if medians else None
-    out["EmbreePassWeakest"] = (WORDS[weakest] if weakest else "no pass", False)
-    out["EmbreePassWeakestMedian"] = (
-        "%.2f" % medians[weakest] if weakest else latex.DASH, True)
+    out["EmbreePassWeakestClause"] = (
+        "it is furthest behind on %s (%.2f of Embree's speed)" % (WORDS[weakest], medians[weakest])
+        if weakest else "no run recorded its passes apart", False)
     return out
 
 
