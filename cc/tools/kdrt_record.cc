@@ -240,10 +240,16 @@ void AddPassComparisons(const std::vector<Lane>& lanes, Json* rec) {
   Json passes = Json::object();
   for (const bool shadow : {false, true}) {
     const std::string pass = shadow ? "shadow" : "camera";
-    passes[pass + "_single"] = PassRatio(FastestTracing({el}, *rs, shadow),
-                                         FastestTracing(OurSingleLanes(lanes), *rs, shadow));
+    // A pass without rays (no light, or no primary hit) has only noise to time.
+    const uint64_t rays = shadow ? fl->last.shadow.rays : fl->last.primary.rays;
+    const std::vector<double> none;
+    passes[pass + "_single"] =
+        rays == 0 ? PassRatio(none, none)
+                  : PassRatio(FastestTracing({el}, *rs, shadow),
+                              FastestTracing(OurSingleLanes(lanes), *rs, shadow));
     passes[pass + "_packets"] =
-        PassRatio(FastestTracing({ep}, *rp, shadow), FastestTracing({fl}, *rp, shadow));
+        rays == 0 ? PassRatio(none, none)
+                  : PassRatio(FastestTracing({ep}, *rp, shadow), FastestTracing({fl}, *rp, shadow));
   }
   passes["replay_primary_s_runs"] = rs->timed.t_primary;
   passes["replay_shadow_s_runs"] = rs->timed.t_shadow;

@@ -88,7 +88,7 @@ void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_jso
 // single rays (Embree's against the faster of our two single-ray lanes) and
 // packets (Embree's 16-ray packets against the fast mode). A round where
 // either tracing time is not positive (a pass too short to time) gives no
-// ratio.
+// ratio, and neither does a pass without rays (no light, or no primary hit).
 void AddPassComparisons(const std::vector<Lane>& lanes, nlohmann::ordered_json* rec);
 
 // FNV-1a 64 of the image's bytes (image_fnv64).

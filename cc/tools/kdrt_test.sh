@@ -35,6 +35,8 @@ VIEW
 # The fast mode with Embree's rounds: its packets and its robust setting too.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=2 --cache_dir= --fast_render \
   --embree=medium > fastemb.json
+"$KDRT" --mesh=scene.obj --view=dark.view --repeats=1 --cache_dir= --fast_render \
+  --embree=medium > fastdark.json
 # A budget of ~0 s: every timed step runs once although --repeats=4.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=4 --repeat_budget_s=1e-12 --cache_dir= \
   --embree=medium > budget.json
@@ -61,7 +63,8 @@ test $(( (size - 40) % 56 )) -eq 0
 # required one with its type, and no other (analysis/record_schema.py).
 /usr/bin/python3 "$RUNFILES/analysis/record_schema.py" \
   --schema "$RUNFILES/cc/tools/kdrt_record.schema.json" --sections kdrt \
-  lit.json dark.json lit2.json lit1.json budget.json dropped.json fastemb.json out/results.jsonl
+  lit.json dark.json lit2.json lit1.json budget.json dropped.json fastemb.json fastdark.json \
+  out/results.jsonl
 /usr/bin/python3 -c 'import json; r = json.load(open("lit.json")); r["surprise"] = 1
 print(json.dumps(r))' > undeclared.json
 if /usr/bin/python3 "$RUNFILES/analysis/record_schema.py" \
@@ -169,5 +172,8 @@ for key, p in (("primary", "camera"), ("shadow", "shadow")):
               and all(abs(a - b) <= 1e-12 * abs(b) for a, b in zip(runs, want))
               and (ps[name]["paired_ratio"] is None) == (not runs),
               name + ": each lane's pass less its replay, Embree's over ours per round")
+dark_passes = json.load(open("fastdark.json"))["fast_render"]["passes"]
+check(all(dark_passes[n] == {"paired_ratio": None, "paired_ratio_runs": []}
+          for n in ("shadow_single", "shadow_packets")), "no light: no shadow-pass ratio")
 print("ok")
 PY
