@@ -21,6 +21,7 @@ of the paired medians, and how many scenes have one).
 
 import statistics
 
+from analysis import embree
 from analysis import kdtree_results as kr
 from analysis import latex
 from analysis import provenance
@@ -42,11 +43,10 @@ MACROS = ["EmbreePass%s%s" % (name, what) for _, name, _ in PASSES
 
 def _cell(r, prefix):
     """(paired median, lowest, highest round) of one pass; None without."""
-    median = r[prefix + "_ratio"]
-    runs = r[prefix + "_ratio_runs"]
-    if not kr.present(median) or not isinstance(runs, list) or not runs:
+    median, runs = embree.paired(r, prefix + "_ratio")
+    if median is None or not runs:
         return None
-    return float(median), min(runs), max(runs)
+    return median, min(runs), max(runs)
 
 
 def rows(df):

@@ -239,17 +239,18 @@ void AddPassComparisons(const std::vector<Lane>& lanes, Json* rec) {
   if (!rs || !rp || !el || !ep || !fl || (*rec)["fast_render"].is_null()) return;
   Json passes = Json::object();
   for (const bool shadow : {false, true}) {
+    // A pass without rays (no light, or no primary hit) has only noise to
+    // time: no ratio.
+    const bool traced = (shadow ? fl->last.shadow.rays : fl->last.primary.rays) != 0;
+    const auto ratio = [&](const std::vector<const Lane*>& theirs,
+                           const std::vector<const Lane*>& ours, const Lane& replay) {
+      return traced ? PassRatio(FastestTracing(theirs, replay, shadow),
+                                FastestTracing(ours, replay, shadow))
+                    : PassRatio({}, {});
+    };
     const std::string pass = shadow ? "shadow" : "camera";
-    // A pass without rays (no light, or no primary hit) has only noise to time.
-    const uint64_t rays = shadow ? fl->last.shadow.rays : fl->last.primary.rays;
-    const std::vector<double> none;
-    passes[pass + "_single"] =
-        rays == 0 ? PassRatio(none, none)
-                  : PassRatio(FastestTracing({el}, *rs, shadow),
-                              FastestTracing(OurSingleLanes(lanes), *rs, shadow));
-    passes[pass + "_packets"] =
-        rays == 0 ? PassRatio(none, none)
-                  : PassRatio(FastestTracing({ep}, *rp, shadow), FastestTracing({fl}, *rp, shadow));
+    passes[pass + "_single"] = ratio({el}, OurSingleLanes(lanes), *rs);
+    passes[pass + "_packets"] = ratio({ep}, {fl}, *rp);
   }
   passes["replay_primary_s_runs"] = rs->timed.t_primary;
   passes["replay_shadow_s_runs"] = rs->timed.t_shadow;
