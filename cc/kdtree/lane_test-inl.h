@@ -187,19 +187,20 @@ struct LaneHits {
 };
 
 // IntersectTriangleWatertight after RejectRays, for the `lanes` it did not
-// reject (tmax, aligned: each lane's tmax, its best hit's t so far), the
-// triangle's shear s. A lane in neither out->hit nor out->scalar misses.
+// reject (t_max: each lane's tmax, its best hit's t so far), the triangle's
+// shear s. A lane in neither out->hit nor out->scalar misses. t_vec (if
+// given): out->t's lanes of out->hit as a vector, other lanes unspecified.
 // Both halves computed without the branches on an empty half and on no hit
 // (a simulated predictor counted them among the kernel's least predictable)
 // made the packet kernel 0.3-2 % slower (in-process A/B, six scenes,
 // 2026-12-06): not kept.
 template <class D>
 HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t lanes,
-                            const float* tmax, LaneHits* out) {
+                            hn::Vec<D> t_max, LaneHits* out, hn::Vec<D>* t_vec = nullptr) {
 #if HWY_TARGET == HWY_SCALAR
   out->hit = 0;
   out->scalar = lanes;  // no half vectors: the scalar test does it all
-  (void)d, (void)f, (void)s, (void)tmax;
+  (void)d, (void)f, (void)s, (void)t_max, (void)t_vec;
 #else
   using V = hn::Vec<D>;
   const V z[3] = {hn::Mul(f.sz, s.dz[0]), hn::Mul(f.sz, s.dz[1]), hn::Mul(f.sz, s.dz[2])};
@@ -214,12 +215,12 @@ HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint
   const V max_x = MaxAbs3<D>(s.x), max_y = MaxAbs3<D>(s.y), max_z = MaxAbs3<D>(z);
   const V max_abs_kz = MaxAbs3<D>(s.dz);
   const V min_z = hn::Min(hn::Min(z[0], z[1]), z[2]);
-  const V t_max = hn::Load(d, tmax);
   const hn::Half<D> dh;
   const hn::Repartition<double, D> dd;
   using VD = hn::Vec<decltype(dd)>;
   const size_t half = hn::Lanes(dh);
   const uint32_t half_bits = (1u << half) - 1;
+  hn::Vec<decltype(dh)> t_half[2] = {hn::Zero(dh), hn::Zero(dh)};
   for (size_t h = 0; h < 2; ++h) {
     const uint32_t mine = (lanes >> (h * half)) & half_bits;
     if (mine == 0) continue;
@@ -270,10 +271,12 @@ HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint
     out->scalar |= scalar << (h * half);
     out->hit |= hit << (h * half);
     if (hit == 0) continue;
+    t_half[h] = tt;
     hn::StoreU(tt, dh, out->t + h * half);
     hn::StoreU(hn::DemoteTo(dh, hn::Mul(e1, inv_det)), dh, out->u + h * half);
     hn::StoreU(hn::DemoteTo(dh, hn::Mul(e2, inv_det)), dh, out->v + h * half);
   }
+  if (t_vec != nullptr) *t_vec = hn::Combine(d, t_half[1], t_half[0]);
 #endif
 }
 

@@ -37,43 +37,48 @@ HWY_INLINE void CountStep(uint32_t lanes, uint64_t* steps, uint64_t* visits) {
 }
 
 // Lane i's hit on triangle `tri` at t (u, v), if it is the closest so far
-// (any hit: the lane is done).
+// (any hit: the lane is done). Whether it was recorded: the caller then sets
+// lane i of its best t's vector (closest hit).
 template <bool kAnyHit>
-HWY_INLINE void Record(int i, uint32_t tri, float t, float u, float v, Hit* h, uint32_t* lanes,
-                       uint32_t* found, float* best_t) {
-  if (!kAnyHit && !Closer(t, tri, *h)) return;
+HWY_INLINE bool Record(int i, uint32_t tri, float t, float u, float v, Hit* h, uint32_t* lanes,
+                       uint32_t* found) {
+  if (!kAnyHit && !Closer(t, tri, *h)) return false;
   h->tri = tri;
   h->t = t;
   h->u = u;
   h->v = v;
   *found |= 1u << i;
-  if (kAnyHit) {
-    *lanes &= ~(1u << i);
-  } else {
-    best_t[i] = t;
-  }
+  if (kAnyHit) *lanes &= ~(1u << i);
+  return true;
+}
+
+// Lane i of *bt set to t.
+template <class D>
+HWY_INLINE void SetLane(D d, int i, float t, hn::Vec<D>* bt) {
+  *bt = hn::IfThenElse(FromBits(d, 1u << i), hn::Set(d, t), *bt);
 }
 
 // IntersectTriangleWatertight itself for ray r of the packet and triangle l
 // of the leaf packet (with the ray's best hit so far as tmax); records a hit
-// for lane i (r - base).
+// for lane i (r - base), and says whether it did (Record).
 template <bool kAnyHit>
-HWY_INLINE void ScalarTest(const PacketRays& p, const Group& g, const float* packet, int l,
+HWY_INLINE bool ScalarTest(const PacketRays& p, const Group& g, const float* packet, int l,
                            uint32_t tri, size_t base, int i, uint32_t* lanes, uint32_t* found,
-                           float* best_t, Hit* best) {
+                           Hit* best) {
   const size_t r = base + i;
   Vec3 a, b, c;
   PacketTriangle(packet, l, &a, &b, &c);
   float t, u, v;
   const WatertightRay w = LaneRay(p, g.kx, g.ky, g.kz, static_cast<int>(r));
   if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], best[r].t, &t, &u, &v)) {
-    Record<kAnyHit>(i, tri, t, u, v, &best[r], lanes, found, best_t);
+    return Record<kAnyHit>(i, tri, t, u, v, &best[r], lanes, found);
   }
+  return false;
 }
 
 // The lanes of `lanes` the leaf's triangles are tested against; updates best
-// and best_t (closest hit) or `lanes` and *found (any hit: a lane with a hit
-// is done). Tried and not kept (in-process A/B, the new code on AVX3_DL
+// and *bt, the lanes' best t (closest hit), or `lanes` and *found (any hit: a
+// lane with a hit is done). Tried and not kept (in-process A/B, the new code on AVX3_DL
 // against the old on AVX3, 7 paired rounds, 2026-12-06): prefetching the next
 // leaf packet (T_R 0.995-1.015 old over new, the control 0.998-1.009), and for
 // lanes sharing their origin (camera packets) moving the triangle to it once
@@ -84,7 +89,7 @@ HWY_INLINE void ScalarTest(const PacketRays& p, const Group& g, const float* pac
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
                          const Group& g, size_t base, uint32_t first, uint32_t* lanes,
-                         uint32_t* found, float* best_t, Hit* best, PacketCounters* c) {
+                         uint32_t* found, hn::Vec<D>* bt, Hit* best, PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   const bool origins = p.has_origins;
   const uint32_t behind = p.behind >> base;
@@ -107,14 +112,21 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
       if (c != nullptr) CountStep(*lanes & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
       if (rays == 0) continue;
       LaneHits lh;
-      FinishLanes(d, f, s, rays, best_t, &lh);
+      hn::Vec<D> t_vec = *bt;
+      FinishLanes(d, f, s, rays, *bt, &lh, kAnyHit ? nullptr : &t_vec);
+      uint32_t recorded = 0;
       for (uint32_t m = lh.hit; m != 0; m &= m - 1) {
         const int i = __builtin_ctz(m);
-        Record<kAnyHit>(i, id[l], lh.t[i], lh.u[i], lh.v[i], &best[base + i], lanes, found, best_t);
+        if (Record<kAnyHit>(i, id[l], lh.t[i], lh.u[i], lh.v[i], &best[base + i], lanes, found)) {
+          recorded |= 1u << i;
+        }
       }
+      if (!kAnyHit && recorded != 0) *bt = hn::IfThenElse(FromBits(d, recorded), t_vec, *bt);
       for (uint32_t m = lh.scalar; m != 0; m &= m - 1) {
-        ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, __builtin_ctz(m), lanes, found, best_t,
-                            best);
+        const int i = __builtin_ctz(m);
+        if (ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, i, lanes, found, best) && !kAnyHit) {
+          SetLane(d, i, best[base + i].t, bt);
+        }
       }
     }
     if (last || *lanes == 0) return;
@@ -133,7 +145,7 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
                             const Group& g, size_t base, uint32_t first, uint32_t* lanes,
-                            uint32_t* found, float* best_t, Hit* best, PacketCounters* c) {
+                            uint32_t* found, hn::Vec<D>* bt, Hit* best, PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   const size_t n = hn::Lanes(d);
   // Block k holds ray ray[k]; blocks past the rays repeat the last one.
@@ -157,7 +169,6 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
   const Frames<D> pf = f.Permuted(perm);
   const auto origin =
       hn::TableLookupLanes(hn::Load(du, p.origin + base), hn::SetTableIndices(du, index));
-  HWY_ALIGN float tmax[kLanes];
   HWY_ALIGN static constexpr uint32_t kIdMask[kPacketLanes] = {~kLastPacket, ~0u, ~0u, ~0u};
   const float* packet = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
   for (;;) {
@@ -186,19 +197,20 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
     rays &= ~own;  // no branch on rays (TestLeaf)
     if (c != nullptr) CountStep(live & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
     if (rays != 0) {
-      hn::Store(hn::TableLookupLanes(hn::Load(d, best_t), perm), d, tmax);
       LaneHits lh;
-      FinishLanes(d, pf, s, rays, tmax, &lh);
+      FinishLanes(d, pf, s, rays, hn::TableLookupLanes(*bt, perm), &lh);
       for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
         const int j = __builtin_ctz(m);
         const int i = index[j], l = j % kPacketLanes;
         if (kAnyHit && !((*lanes >> i) & 1)) continue;  // found already
+        bool recorded;
         if ((lh.hit >> j) & 1) {
-          Record<kAnyHit>(i, id[l], lh.t[j], lh.u[j], lh.v[j], &best[base + i], lanes, found,
-                          best_t);
+          recorded =
+              Record<kAnyHit>(i, id[l], lh.t[j], lh.u[j], lh.v[j], &best[base + i], lanes, found);
         } else {
-          ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, i, lanes, found, best_t, best);
+          recorded = ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, i, lanes, found, best);
         }
+        if (!kAnyHit && recorded) SetLane(d, i, best[base + i].t, bt);
       }
     }
     if (last || *lanes == 0) return;

@@ -232,9 +232,7 @@ Hit Traverse(const KdTree& tree, const Ray& input, uint32_t origin_tri,
       }
       lane::LaneHits lh;
       if (live != 0 && kMode == IntersectionMode::kWatertight) {
-        HWY_ALIGN float tmax[kStepPackets * kPacketLanes];
-        for (float& t : tmax) t = best.t;
-        lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), tmax, &lh);
+        lane::FinishLanes(dl, frames, s, static_cast<uint32_t>(live), hn::Set(dl, best.t), &lh);
       } else if (live != 0) {
         lane::FastLanes(dl, ray_lanes, step, ray.tmin, best.t, static_cast<uint32_t>(live), &lh);
       }
