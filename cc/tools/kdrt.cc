@@ -27,15 +27,7 @@
 // perf_krays = 640,000 / T_R / 1000 in the report's sense: primary rays per
 // second of render time although T_R includes the shadow rays
 // (width * height in place of 640,000); all_rays_per_s counts every ray.
-#include <unistd.h>
-
-#include <algorithm>
-#include <chrono>
-#include <filesystem>
-#include <functional>
 #include <cstdio>
-#include <cstdlib>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,7 +36,6 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "absl/strings/str_join.h"
 #include "cc/base/json_line.h"
 #include "cc/base/median.h"
 #include "cc/base/provenance.h"
@@ -53,19 +44,16 @@
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/stats.h"
-#include "cc/render/compare.h"
 #include "cc/render/framing.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/manifest.h"
 #include "cc/render/png.h"
-#include "cc/render/ray_dump.h"
 #include "cc/render/renderer.h"
-#include "cc/render/cost_image.h"
-#include "cc/render/traversal_counts.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
 #include "cc/tools/kdrt_lanes.h"
 #include "cc/tools/kdrt_limits.h"
+#include "cc/tools/kdrt_passes.h"
 #include "cc/tools/kdrt_record.h"
 #include "cc/tools/paths.h"
 #include "cc/tools/progress.h"
@@ -128,15 +116,6 @@ std::string MeshStem(const std::string& path) {
 
 using Json = nlohmann::ordered_json;
 
-// Creates the file's directory, then writes it with `write`.
-absl::Status WriteFile(const std::string& path, const std::function<absl::Status(const std::string&)>& write) {
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-  if (ec) return absl::InternalError(absl::StrCat(dir.string(), ": cannot create directory: ", ec.message()));
-  return write(path);
-}
-
 // --scene and --mesh: the mesh to load, the scene's name (the mesh's stem
 // without --scene) and the manifest's view when it has one (view_source
 // "manifest"; else view_source stays empty).
@@ -187,26 +166,99 @@ absl::Status AppendLine(const std::string& path, const std::string& line) {
   return absl::InternalError(absl::StrCat(path, ": cannot append the record"));
 }
 
-absl::Status Run() {
-  const int repeats = absl::GetFlag(FLAGS_repeats), threads = absl::GetFlag(FLAGS_threads);
-  if (repeats < 1 || threads < 1) return absl::InvalidArgumentError("--repeats and --threads must be >= 1");
-  const double budget_s = absl::GetFlag(FLAGS_repeat_budget_s);
-  std::string scene = absl::GetFlag(FLAGS_scene), mesh = FromInvocationDir(absl::GetFlag(FLAGS_mesh));
+// The run's flags, checked, with the scene, its view (manifest or none yet)
+// and the configuration resolved.
+struct RunFlags {
+  int repeats = 0, threads = 0;
+  double budget_s = 0;
+  std::string scene, mesh, view_source;
   View view;
-  std::string view_source;
-  if (absl::Status st = ResolveSceneFlags(&scene, &mesh, &view, &view_source); !st.ok()) return st;
+  ResolvedConfig rc;
+  bool use_embree = false, embree_timed = false;
+  EmbreeQuality quality = EmbreeQuality::kMedium;
+  EmbreeOptions eo;
+};
+
+absl::StatusOr<RunFlags> ReadRunFlags() {
+  RunFlags f;
+  f.repeats = absl::GetFlag(FLAGS_repeats);
+  f.threads = absl::GetFlag(FLAGS_threads);
+  if (f.repeats < 1 || f.threads < 1) return absl::InvalidArgumentError("--repeats and --threads must be >= 1");
+  f.budget_s = absl::GetFlag(FLAGS_repeat_budget_s);
+  f.scene = absl::GetFlag(FLAGS_scene);
+  f.mesh = FromInvocationDir(absl::GetFlag(FLAGS_mesh));
+  if (absl::Status st = ResolveSceneFlags(&f.scene, &f.mesh, &f.view, &f.view_source); !st.ok()) return st;
   absl::StatusOr<ResolvedConfig> rc = ResolveConfig(ConfigFlagsFromCommandLine());
   if (!rc.ok()) return rc.status();
+  f.rc = *std::move(rc);
   const std::string embree_flag = absl::GetFlag(FLAGS_embree);
-  absl::StatusOr<EmbreeQuality> quality = ParseEmbreeQuality(embree_flag);
-  const bool use_embree = embree_flag != "off" && embree_flag != "";
-  const bool embree_timed = use_embree && absl::GetFlag(FLAGS_embree_rounds);
-  if (use_embree && !quality.ok()) return quality.status();
-  EmbreeOptions eo;
-  if (use_embree) eo.quality = *quality;
-  eo.threads = threads;
+  f.use_embree = embree_flag != "off" && embree_flag != "";
+  f.embree_timed = f.use_embree && absl::GetFlag(FLAGS_embree_rounds);
+  if (f.use_embree) {
+    absl::StatusOr<EmbreeQuality> quality = ParseEmbreeQuality(embree_flag);
+    if (!quality.ok()) return quality.status();
+    f.quality = *quality;
+    f.eo.quality = *quality;
+  }
+  f.eo.threads = f.threads;
+  return f;
+}
 
-  Progress progress(absl::StrCat(scene, " ", rc->label));
+// The mesh (through the soup cache), checked; the view from --view, else the
+// manifest's, else AutoView's.
+absl::StatusOr<TriangleSoup> LoadScene(RunFlags* f, LoadReport* load) {
+  LoadOptions load_options;
+  load_options.max_input_bytes = absl::GetFlag(FLAGS_max_mesh_bytes);
+  absl::StatusOr<TriangleSoup> soup =
+      LoadMeshCached(f->mesh, FromWorkspace(absl::GetFlag(FLAGS_cache_dir)), load, load_options);
+  if (!soup.ok()) return soup.status();
+  if (absl::Status st = CheckSceneScale(soup->Bounds()); !st.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat(f->mesh, ": ", st.message()));
+  }
+  if (!load->cache_warning.empty()) std::fprintf(stderr, "kdrt: warning: %s\n", load->cache_warning.c_str());
+  if (!absl::GetFlag(FLAGS_view).empty()) {
+    absl::StatusOr<View> v = LoadViewFile(FromInvocationDir(absl::GetFlag(FLAGS_view)));
+    if (!v.ok()) return v.status();
+    f->view = *v;
+    f->view_source = absl::StrCat("file:", absl::GetFlag(FLAGS_view));
+  } else if (f->view_source.empty()) {
+    f->view = AutoView(soup->Bounds());
+    f->view_source = "auto";
+  }
+  return soup;
+}
+
+// The record's fields that describe the run: scene, mesh, configuration,
+// view and the timing method.
+Json RunFields(const RunFlags& f, const TriangleSoup& soup, const LoadReport& load, size_t rounds,
+               const TimingLock& lock, const Progress& progress) {
+  const ResolvedConfig& rc = f.rc;
+  Json rec = {{"scene", f.scene}, {"mesh", f.mesh}, {"n_tri", soup.size()}, {"load_s", load.load_seconds},
+              {"dropped_at_load",
+               {{"nonfinite", load.dropped_nonfinite},
+                {"degenerate", load.dropped_degenerate},
+                {"point_line_faces", load.skipped_faces}}},
+              {"preset", rc.preset}, {"label", rc.label},
+              {"env_file", rc.env_path.empty() ? Json() : Json(rc.env_path)},
+              {"overrides", rc.overrides}, {"config", ConfigJson(rc.config)},
+              {"env", rc.config.ToEnvironment()}, {"view_source", f.view_source}, {"view", ViewToText(f.view)},
+              {"width", f.view.width}, {"height", f.view.height}, {"lights", f.view.lights.size()},
+              {"threads", f.threads}, {"repeats", f.repeats}, {"repeat_budget_s", f.budget_s}};
+  rec["timing"] = {{"method", "untimed warm-ups first (a build of each tracer; renders: the kd-tree's recording render, "
+                              "Embree's comparison pass), then alone under the lock rounds alternating the tracers, "
+                              "renders then builds; ratios paired per round"},
+                   {"rounds", rounds}, {"lock_wait_s", lock.waited_seconds()},
+                   {"phases_s", progress.phases()}};
+  return rec;
+}
+
+absl::Status Run() {
+  absl::StatusOr<RunFlags> flags = ReadRunFlags();
+  if (!flags.ok()) return flags.status();
+  RunFlags& f = *flags;
+  const ResolvedConfig& rc = f.rc;
+
+  Progress progress(absl::StrCat(f.scene, " ", rc.label));
   // Untimed work holds the timing lock shared, timed rounds exclusively: no
   // timed step of any process runs beside work of another (timing_lock.h).
   TimingLock lock;
@@ -214,124 +266,56 @@ absl::Status Run() {
   if (absl::Status st = lock.HoldShared(); !st.ok()) return st;
   progress.Step("loading mesh");
   LoadReport load;
-  LoadOptions load_options;
-  load_options.max_input_bytes = absl::GetFlag(FLAGS_max_mesh_bytes);
-  absl::StatusOr<TriangleSoup> soup =
-      LoadMeshCached(mesh, FromWorkspace(absl::GetFlag(FLAGS_cache_dir)), &load, load_options);
+  absl::StatusOr<TriangleSoup> soup = LoadScene(&f, &load);
   if (!soup.ok()) return soup.status();
-  if (absl::Status st = CheckSceneScale(soup->Bounds()); !st.ok()) {
-    return absl::InvalidArgumentError(absl::StrCat(mesh, ": ", st.message()));
-  }
-  if (!load.cache_warning.empty()) std::fprintf(stderr, "kdrt: warning: %s\n", load.cache_warning.c_str());
-  if (!absl::GetFlag(FLAGS_view).empty()) {
-    absl::StatusOr<View> v = LoadViewFile(FromInvocationDir(absl::GetFlag(FLAGS_view)));
-    if (!v.ok()) return v.status();
-    view = *v;
-    view_source = absl::StrCat("file:", absl::GetFlag(FLAGS_view));
-  } else if (view_source.empty()) {
-    view = AutoView(soup->Bounds());
-    view_source = "auto";
-  }
-
   absl::StatusOr<uint64_t> tree_budget = CheckRunMemory(
-      view, rc->config.cast_shadow_rays, soup->size(), absl::GetFlag(FLAGS_memory_budget_gb));
+      f.view, rc.config.cast_shadow_rays, soup->size(), absl::GetFlag(FLAGS_memory_budget_gb));
   if (!tree_budget.ok()) return tree_budget.status();
 
   progress.Phase("load");
   // Everything untimed first, then the timed rounds in one stretch under the
   // lock, so that two processes' untimed work overlaps: warm-up builds, the
-  // renders' warm-ups (below), then timed renders on the warm trees and last
-  // the timed builds (which free the warm trees first).
+  // renders' warm-ups (UntimedPasses), then timed renders on the warm trees
+  // and last the timed builds (which free the warm trees first).
   progress.Step("warm-up builds");
   TimedBuilds b;
   b.limits.max_bytes = *tree_budget;
   const auto step = [&progress](const std::string& what) { progress.Step(what); };
-  absl::Status st = WarmUpBuilds(*soup, rc->config, use_embree ? &eo : nullptr, &b);
+  absl::Status st = WarmUpBuilds(*soup, rc.config, f.use_embree ? &f.eo : nullptr, &b);
   if (!st.ok()) return st;
   progress.Phase("warm-up builds");
   const KdTree& tree = *b.tree;
   const TreeStats stats = ComputeStats(tree);
   const KdTreeTracer kd(tree);
   RenderOptions ropt;
-  ropt.threads = threads;
-  ropt.cast_shadow_rays = rc->config.cast_shadow_rays;
-  // The renders (kdrt_lanes.h). Their warm-ups are the untimed passes every
-  // run makes anyway over the frame's rays: the kd-tree's recording render
-  // (the rays and hits for the counting pass, the comparison and the dump),
-  // the comparison passes that trace the recorded rays through Embree (and
-  // the robust Embree), and the replays' recording renders; the fast modes
-  // run on the warmed tree, and each timed render must reproduce the
-  // kd-tree's image and hit counts.
+  ropt.threads = f.threads;
+  ropt.cast_shadow_rays = rc.config.cast_shadow_rays;
+  // The renders (kdrt_lanes.h); the fast modes run on the warmed tree, and
+  // each timed render must reproduce the kd-tree's image and hit counts.
   LaneChoice choice;
   choice.fast = absl::GetFlag(FLAGS_fast_render);
-  choice.embree_timed = embree_timed;
+  choice.embree_timed = f.embree_timed;
   choice.embree_robust = absl::GetFlag(FLAGS_embree_robust);
   choice.render = ropt;
-  absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, kd, b.embree.get(), eo, choice);
+  absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, kd, b.embree.get(), f.eo, choice);
   if (!lane_set.ok()) return lane_set.status();
   std::vector<Lane>& lanes = lane_set->lanes;
-  const bool fast = choice.fast;
-  EmbreeTracer* const robust = lane_set->robust.get();
-  progress.Phase("stats", "recording rays");
-  RenderOptions rec_opt = ropt;
-  rec_opt.record_rays = true;
-  RenderResult recorded = Render(*soup, kd, view, rec_opt);
-  lanes.front().warmup_s = recorded.seconds;
-  progress.Phase("recording render (kd-tree warm-up)", "counting pass");
-  const std::string cost_path = FromInvocationDir(absl::GetFlag(FLAGS_cost_image));
-  CostImage cost(cost_path.empty() ? 0 : view.width, cost_path.empty() ? 0 : view.height);
-  const RayCounts counts = CountTraversal(tree, recorded.rays, cost_path.empty() ? nullptr : &cost);
-  progress.Phase("counting pass");
-  if (!cost_path.empty()) {
-    if (!(st = WriteFile(cost_path, [&](const std::string& p) { return WriteCostImageNpyGz(p, cost); })).ok()) {
-      return st;
-    }
-    progress.Phase("cost image");
-  }
-  Json disagreements, robust_disagreements;
-  if (use_embree) {
-    progress.Step("comparing with embree");
-    const Disagreements d = CompareTracers(recorded.rays, *soup, kd, *b.embree);
-    disagreements = d.ToJson();
-    for (const std::string& ex : d.examples) std::fprintf(stderr, "kdrt: disagreement: %s\n", ex.c_str());
-    progress.Phase("embree comparison (embree warm-up)");
-    if (embree_timed) {
-      lanes[lane_set->embree_lane].warmup_s =
-          progress.phases()["embree comparison (embree warm-up)"].get<double>();
-    }
-    if (robust != nullptr) {
-      progress.Step("comparing with embree (robust)");
-      robust_disagreements = CompareTracers(recorded.rays, *soup, kd, *robust).ToJson();
-      progress.Phase("embree robust comparison (its warm-up)");
-      lanes[lane_set->robust_lane].warmup_s =
-          progress.phases()["embree robust comparison (its warm-up)"].get<double>();
-    }
-  }
-  if (!absl::GetFlag(FLAGS_dump_rays).empty()) {
-    progress.Step("writing ray dump");
-    RayDump dump{view.width, view.height, std::move(recorded.rays)};
-    st = WriteRayDump(FromInvocationDir(absl::GetFlag(FLAGS_dump_rays)), dump);
-    if (!st.ok()) return st;
-    progress.Phase("ray dump");
-  }
-  recorded.rays = std::vector<RayRecord>();
-  for (Lane& l : lanes) {
-    if (l.tracer == &kd || l.replay != nullptr) l.last = recorded;  // to reproduce
-    if (l.replay != nullptr) {  // its answers, recorded in its mode (its warm-up)
-      l.replay->Record();
-      l.warmup_s = Render(*soup, *l.replay, view, l.opt).seconds;
-    }
-  }
-  recorded = RenderResult();
+  PassOutputs outputs;
+  outputs.cost_image = FromInvocationDir(absl::GetFlag(FLAGS_cost_image));
+  outputs.dump_rays = FromInvocationDir(absl::GetFlag(FLAGS_dump_rays));
+  absl::StatusOr<UntimedResults> untimed =
+      UntimedPasses(*soup, tree, kd, f.use_embree ? b.embree.get() : nullptr, f.embree_timed, f.view,
+                    ropt, outputs, &*lane_set, &progress);
+  if (!untimed.ok()) return untimed.status();
   const Lane& kl = lanes.front();
   progress.Step("waiting for the timing lock");
   if (!(st = lock.Acquire()).ok()) return st;
   progress.Phase("waiting for the timing lock");
-  if (!(st = TimeRounds(*soup, view, repeats, budget_s, &lanes, step)).ok()) return st;
+  if (!(st = TimeRounds(*soup, f.view, f.repeats, f.budget_s, &lanes, step)).ok()) return st;
   progress.Phase("timed renders");
   lane_set->robust.reset();  // before the timed builds, as they free the other tracers
   // The lanes' tracers (the warm trees) are freed by the timed builds.
-  st = TimeBuildRounds(*soup, rc->config, embree_timed ? &eo : nullptr, repeats, budget_s, step, &b);
+  st = TimeBuildRounds(*soup, rc.config, f.embree_timed ? &f.eo : nullptr, f.repeats, f.budget_s, step, &b);
   lock.Release();
   if (!st.ok()) return st;
   progress.Phase("timed builds");
@@ -339,40 +323,26 @@ absl::Status Run() {
 
   // Image and record.
   const RenderResult& r = kl.last;
-  const double pixels = static_cast<double>(view.width) * view.height;
+  const double pixels = static_cast<double>(f.view.width) * f.view.height;
   const std::string png = FromInvocationDir(absl::GetFlag(FLAGS_image));
-  if (!png.empty() && !(st = WriteFile(png, [&](const std::string& p) {
+  if (!png.empty() && !(st = WriteCreatingDirectory(png, [&](const std::string& p) {
                           return WritePngRgb8(p, r.width, r.height, r.rgb);
                         })).ok()) {
     return st;
   }
-  Json rec = {{"scene", scene}, {"mesh", mesh}, {"n_tri", soup->size()}, {"load_s", load.load_seconds},
-              {"dropped_at_load",
-               {{"nonfinite", load.dropped_nonfinite},
-                {"degenerate", load.dropped_degenerate},
-                {"point_line_faces", load.skipped_faces}}},
-              {"preset", rc->preset}, {"label", rc->label},
-              {"env_file", rc->env_path.empty() ? Json() : Json(rc->env_path)},
-              {"overrides", rc->overrides}, {"config", ConfigJson(rc->config)},
-              {"env", rc->config.ToEnvironment()}, {"view_source", view_source}, {"view", ViewToText(view)},
-              {"width", view.width}, {"height", view.height}, {"lights", view.lights.size()},
-              {"threads", threads}, {"repeats", repeats}, {"repeat_budget_s", budget_s}};
-  rec["timing"] = {{"method", "untimed warm-ups first (a build of each tracer; renders: the kd-tree's recording render, "
-                              "Embree's comparison pass), then alone under the lock rounds alternating the tracers, "
-                              "renders then builds; ratios paired per round"},
-                   {"rounds", kl.timed.t_r.size()}, {"lock_wait_s", lock.waited_seconds()},
-                   {"phases_s", progress.phases()}};
+  Json rec = RunFields(f, *soup, load, kl.timed.t_r.size(), lock, progress);
   rec["T_B"] = Median(b.kd_runs);
   rec["T_B_runs"] = b.kd_runs;
   rec["T_B_warmup"] = b.kd_warmup;
   AddRenderTimes(kl, pixels, &rec);
   rec["rays_total"] = r.total_rays();
-  AddCountsAndStats(counts, stats, r, &rec);
+  AddCountsAndStats(untimed->counts, stats, r, &rec);
   rec["effects"] = EffectsJson(kl);
   rec["image"] = png.empty() ? Json() : Json(png);
   rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
-  AddComparisons(lanes, fast, use_embree ? &*quality : nullptr, embree_timed, b, disagreements, pixels, &rec);
-  AddRobustEmbree(lanes, robust_disagreements, &rec);
+  AddComparisons(lanes, choice.fast, f.use_embree ? &f.quality : nullptr, f.embree_timed, b,
+                 untimed->disagreements, pixels, &rec);
+  AddRobustEmbree(lanes, untimed->robust_disagreements, &rec);
   AddPassComparisons(lanes, &rec);
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();
@@ -381,13 +351,14 @@ absl::Status Run() {
   std::printf("%s\n", line.c_str());
   std::fflush(stdout);
   const std::string record_path = FromInvocationDir(absl::GetFlag(FLAGS_record));
-  if (!record_path.empty() && !(st = WriteFile(record_path, [&](const std::string& p) {
+  if (!record_path.empty() && !(st = WriteCreatingDirectory(record_path, [&](const std::string& p) {
                                   return AppendLine(p, line);
                                 })).ok()) {
     return st;
   }
-  if (counts.result_mismatches != 0) {
-    return absl::InternalError(absl::StrCat(counts.result_mismatches, " rays differ between the counting and the fast traversal"));
+  if (untimed->counts.result_mismatches != 0) {
+    return absl::InternalError(absl::StrCat(untimed->counts.result_mismatches,
+                                            " rays differ between the counting and the fast traversal"));
   }
   return absl::OkStatus();
 }

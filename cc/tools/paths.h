@@ -4,8 +4,12 @@
 #define KDTREE_CC_TOOLS_PATHS_H_
 
 #include <cstdlib>
+#include <filesystem>
+#include <functional>
 #include <string>
+#include <system_error>
 
+#include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 
 namespace kdtree {
@@ -30,6 +34,16 @@ inline std::string FromInvocationDir(const std::string& path) {
   const char* dir = std::getenv("BUILD_WORKING_DIRECTORY");
   if (path.empty() || path[0] == '/' || dir == nullptr || *dir == '\0') return path;
   return absl::StrCat(dir, "/", path);
+}
+
+// Creates the file's directory, then writes the file with `write`.
+inline absl::Status WriteCreatingDirectory(
+    const std::string& path, const std::function<absl::Status(const std::string&)>& write) {
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (ec) return absl::InternalError(absl::StrCat(dir.string(), ": cannot create directory: ", ec.message()));
+  return write(path);
 }
 
 }  // namespace kdtree
