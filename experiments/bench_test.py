@@ -1,5 +1,5 @@
-"""Tests of experiments/bench.py: scene selection, the summaries and the
-provenance they state and check."""
+"""Tests of experiments/bench.py and experiments/bench_tables.py: scene
+selection, the summaries and the provenance they state and check."""
 import contextlib
 import io
 import json
@@ -10,6 +10,7 @@ import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench  # noqa: E402
+import bench_tables  # noqa: E402
 
 
 def provenance(tree="a" * 40, commit="c" * 40, dirty=False, mode="opt", cpu="Test CPU @ 2GHz"):
@@ -44,7 +45,7 @@ class BenchTest(unittest.TestCase):
                              ["c", "a"])
 
     def test_build_summary_gives_throughput_and_speed_up(self):
-        text = bench.build_summary([build_record(1, [1.0, 0.8, 1.2], warmup=[1.5]),
+        text = bench_tables.build_summary([build_record(1, [1.0, 0.8, 1.2], warmup=[1.5]),
                                     build_record(2, [0.5, 0.6, 0.4], warmup=[0.7])])
         row = text.splitlines()[2]
         self.assertIn("1.000 s (0.800), 2.00 (2.50)", row)  # median, fastest; Mtri/s
@@ -69,7 +70,7 @@ class BenchTest(unittest.TestCase):
         one["ratio_kd_over_embree_packet"] = {"kd_packet": {"median": 0.6, "paired": 0.62},
                                               "kd_packet_origin": {"median": 0.7,
                                                                    "paired": 0.69}}
-        text = bench.render_summary([one, rec(2, 0.1, 0.05)])
+        text = bench_tables.render_summary([one, rec(2, 0.1, 0.05)])
         row = text.splitlines()[2]
         self.assertIn("| 0.50 | 0.55 | 0.62 | 0.66 | 0.81, 0.69 | 2.00x | 2.00x |", row)
         self.assertIn("paired kd_packet_origin/Embree over 1 rows: median 0.81, range 0.81 to "
@@ -92,16 +93,17 @@ class BenchTest(unittest.TestCase):
             if occluded is not None:
                 r["shadow_occluded"] = occluded
             return r
-        text = bench.render_summary([rec("box", 737856, 10, 990), rec("bunny", 69666, 30000, 200),
-                                     rec("old", 100000, None)])
+        text = bench_tables.render_summary([rec("box", 737856, 10, 990),
+                                            rec("bunny", 69666, 30000, 200),
+                                            rec("old", 100000, None)])
         self.assertIn("Camera coverage: primary rays hit a median of 21.5 % of a scene's "
                       "triangles (fewest: 0.00 % on box); under 0.1 %: box.", text)
         self.assertIn("Shadow rays occluded: median 60 % (most: 99 % on box); over 95 %: box.",
                       text)
-        text = bench.render_summary([rec("bunny", 69666, 30000, 200)])
+        text = bench_tables.render_summary([rec("bunny", 69666, 30000, 200)])
         self.assertIn("under 0.1 %: none.", text)
         self.assertIn("over 95 %: none.", text)
-        old = bench.render_summary([rec("old", 100000, None)])
+        old = bench_tables.render_summary([rec("old", 100000, None)])
         self.assertNotIn("Camera coverage", old)
         self.assertNotIn("Shadow rays occluded", old)
 
@@ -114,7 +116,7 @@ class BenchTest(unittest.TestCase):
                          "kd_packet_origin": runs(1.0, 1.0, 1.0),
                          "embree": runs(1.6, 1.5, 1.6), "embree_packet": runs(1.2, 1.0, 0.9)}}
         two = dict(r, threads=2)  # ignored: one thread only
-        text = bench.targets_summary([r, two])
+        text = bench_tables.targets_summary([r, two])
         # Single: Embree's single over our faster single mode per round: 1.6/1.6,
         # 1.5/2.0, 1.6/2.0. Best: Embree's faster over ours: 1.2, 1.0, 0.9.
         self.assertIn("| s | 100,000 | sah-packet | 0.80 [0.75..1.00] (met) | "
@@ -131,22 +133,22 @@ class BenchTest(unittest.TestCase):
         traced = dict(r, tracers=dict(r["tracers"], replay=runs(0.5, 0.5, 0.5),
                                       replay_packet=runs(0.4, 0.4, 0.4)))
         self.assertIn("(met) | 0.73 [0.67..1.00] | 1.00 [0.83..1.33] (met) |",
-                      bench.targets_summary([traced]))
+                      bench_tables.targets_summary([traced]))
         self.assertIn("Tracing alone, best mode against Embree's best mode over 1 rows: "
-                      "median 1.00", bench.targets_summary([traced]))
+                      "median 1.00", bench_tables.targets_summary([traced]))
         # A tracing time that is not positive is left out: in round 2 Embree's
         # single rays (1.5 - 1.5), so single/single has no ratio there (1.1/1.1,
         # 1.1/1.5) and best/best takes Embree's packets (0.8/0.6, 0.6/0.5,
         # 0.5/0.6).
         noisy = dict(traced, tracers=dict(traced["tracers"], replay=runs(0.5, 1.5, 0.5)))
         self.assertIn("(met) | 0.87 [0.73..1.00] (met) | 1.20 [0.83..1.33] (met) |",
-                      bench.targets_summary([noisy]))
+                      bench_tables.targets_summary([noisy]))
         # Without Embree's packets, the best mode is against its single rays.
         del r["tracers"]["embree_packet"]
-        self.assertIn("| 1.60 [1.50..1.60] (met) |", bench.targets_summary([r]))
+        self.assertIn("| 1.60 [1.50..1.60] (met) |", bench_tables.targets_summary([r]))
         # No Embree at all: no ratios.
         del r["tracers"]["embree"]
-        self.assertIn("| s | 100,000 | sah-packet | - | - |", bench.targets_summary([r]))
+        self.assertIn("| s | 100,000 | sah-packet | - | - |", bench_tables.targets_summary([r]))
 
     def test_targets_summary_against_embree_robust(self):
         def runs(*t):
@@ -159,15 +161,16 @@ class BenchTest(unittest.TestCase):
                          "embree": runs(1.0, 1.0, 1.0), "embree_packet": runs(0.5, 0.5, 0.5),
                          "embree_robust": runs(1.6, 1.8, 2.0),
                          "embree_robust_packet": runs(1.1, 1.2, 1.0)}}
-        text = bench.targets_summary([r], robust=True)
+        text = bench_tables.targets_summary([r], robust=True)
         # Against the robust tracers only: 1.6/2, 1.8/2, 2/2 and 1.1, 1.2, 1.0.
         self.assertIn("| s | 100,000 | sah-packet | 0.90 [0.80..1.00] (met) | "
                       "1.10 [1.00..1.20] (met) | - | - | 0, 1,234 |", text)
         # The default table ignores them.
-        self.assertIn("| 0.50 [0.50..0.50] | 0.50 [0.50..0.50] |", bench.targets_summary([r]))
+        self.assertIn("| 0.50 [0.50..0.50] | 0.50 [0.50..0.50] |",
+                      bench_tables.targets_summary([r]))
         # A record without the robust tracers has no row.
         del r["tracers"]["embree_robust"]
-        self.assertNotIn("| s |", bench.targets_summary([r], robust=True))
+        self.assertNotIn("| s |", bench_tables.targets_summary([r], robust=True))
 
     def test_passes_summary_pairs_each_pass_less_its_replay(self):
         def runs(total, primary, secondary):
@@ -181,7 +184,7 @@ class BenchTest(unittest.TestCase):
                          "embree_packet": runs([1, 1], [0.6, 0.5], [0.7, 0.8]),
                          "replay": runs([1, 1], [0.5, 0.5], [0.3, 0.3]),
                          "replay_packet": runs([1, 1], [0.4, 0.4], [0.3, 0.3])}}
-        text = bench.passes_summary([r, dict(r, threads=2)])
+        text = bench_tables.passes_summary([r, dict(r, threads=2)])
         # Primary, single: Embree 0.7, 0.8 over our faster 1.0, 1.0. Shadow,
         # single: 0.4, 0.6 over 0.7, 1.2. Primary, packets: 0.2, 0.1 over 0.5,
         # 0.4 (median 0.325, printed 0.32). Shadow, packets: 0.4, 0.5 over 0.4
@@ -193,7 +196,7 @@ class BenchTest(unittest.TestCase):
                       "median 1.12, range 1.12 to 1.12.", text)
         # Without the replays, or records without per-round pass times: no row.
         del r["tracers"]["replay"], r["tracers"]["replay_packet"]
-        self.assertNotIn("| s |", bench.passes_summary([r]))
+        self.assertNotIn("| s |", bench_tables.passes_summary([r]))
 
     def test_packets_summary_gives_steps_per_packet_and_lanes_per_step(self):
         def counts(packets, rays):
@@ -206,7 +209,8 @@ class BenchTest(unittest.TestCase):
              "provenance": provenance(),
              "packet_counts": {"kd_packet_origin": {"kernel": "AVX3", "closest": counts(17166, 640000),
                                                     "any": counts(8609, 134093)}}}
-        text = bench.packets_summary([r, dict(r, threads=2), dict(r, scene="t", packet_counts={})])
+        text = bench_tables.packets_summary([r, dict(r, threads=2),
+                                             dict(r, scene="t", packet_counts={})])
         self.assertIn("| s | kd_packet_origin | AVX3 | closest | 17,166 | 20.2 | 5.0 | 23.0 | "
                       "13.5 | 13.6 | 7.5 | 8.5 |", text)
         self.assertIn("| s | kd_packet_origin | AVX3 | any | 8,609 |", text)
@@ -214,44 +218,45 @@ class BenchTest(unittest.TestCase):
 
     def test_summary_states_the_provenance(self):
         text = bench.summarise([build_record(1, [1.0]), build_record(2, [0.5])],
-                               bench.build_summary, "build.jsonl")
-        self.assertTrue(text.startswith("Provenance: commit cccccccccccc, opt build, "
+                               bench_tables.build_summary, "build.jsonl")
+        self.assertTrue(text.startswith("Provenance: cccccccccccc, opt, "
                                         "Test CPU @ 2GHz.\n\n| scene |"), text)
         dirty = provenance(dirty=True, tree="0123456789abcdef" * 2)
-        text = bench.summarise([build_record(1, [1.0], prov=dirty)], bench.build_summary, "b")
-        self.assertIn("commit cccccccccccc (dirty, source tree 0123456789ab), opt build", text)
+        text = bench.summarise([build_record(1, [1.0], prov=dirty)],
+                               bench_tables.build_summary, "b")
+        self.assertIn("cccccccccccc +dirty 0123456789ab, opt", text)
 
     def test_different_source_trees_are_refused_unless_allowed(self):
         records = [build_record(1, [1.0]), build_record(2, [0.5], prov=provenance(tree="b" * 40,
                                                                                 commit="d" * 40))]
         with self.assertRaises(bench.ProvenanceError) as e:
-            bench.summarise(records, bench.build_summary, "build.jsonl")
+            bench.summarise(records, bench_tables.build_summary, "build.jsonl")
         message = str(e.exception)
         self.assertIn("build.jsonl would mix records of 2 provenances", message)
         self.assertIn("cccccccccccc", message)
         self.assertIn("dddddddddddd", message)
         self.assertIn("--allow_mixed_provenance", message)
-        text = bench.summarise(records, bench.build_summary, "build.jsonl", allow_mixed=True)
-        self.assertIn("Provenance, 2 of them: commit cccccccccccc, opt build, Test CPU @ 2GHz "
-                      "(1 records); commit dddddddddddd", text)
+        text = bench.summarise(records, bench_tables.build_summary, "build.jsonl", allow_mixed=True)
+        self.assertIn("Provenance, 2 of them: cccccccccccc, opt, Test CPU @ 2GHz "
+                      "(1 records); dddddddddddd", text)
         # Another commit of the same source tree (an edit elsewhere) is one code.
         same = [build_record(1, [1.0]), build_record(2, [0.5], prov=provenance(commit="e" * 40))]
-        bench.summarise(same, bench.build_summary, "build.jsonl")
+        bench.summarise(same, bench_tables.build_summary, "build.jsonl")
         # A record from before provenance is of another, unknown, code.
         old = build_record(2, [0.5])
         del old["provenance"]
         with self.assertRaises(bench.ProvenanceError):
-            bench.summarise([build_record(1, [1.0]), old], bench.build_summary, "b")
+            bench.summarise([build_record(1, [1.0]), old], bench_tables.build_summary, "b")
 
     def test_timings_not_built_for_timing_are_refused_unless_allowed(self):
         records = [build_record(1, [1.0], prov=provenance(mode="fastbuild"))]
         with self.assertRaises(bench.ProvenanceError) as e:
-            bench.summarise(records, bench.build_summary, "build.jsonl")
+            bench.summarise(records, bench_tables.build_summary, "build.jsonl")
         self.assertIn("timings of big/binning-32 from a binary not built for timing "
                       "(cccccccccccc, fastbuild", str(e.exception))
         self.assertIn("--allow_unoptimized_timings", str(e.exception))
-        text = bench.summarise(records, bench.build_summary, "b", allow_unoptimized=True)
-        self.assertIn("Provenance: commit cccccccccccc, fastbuild build", text)
+        text = bench.summarise(records, bench_tables.build_summary, "b", allow_unoptimized=True)
+        self.assertIn("Provenance: cccccccccccc, fastbuild", text)
 
     def test_main_refuses_mixed_records_and_states_one_provenance(self):
         with tempfile.TemporaryDirectory() as d:
@@ -261,7 +266,7 @@ class BenchTest(unittest.TestCase):
             out = io.StringIO()
             with contextlib.redirect_stdout(out):
                 bench.main(["--out", d, "--summary_only"])
-            self.assertIn("## Build (build_bench)\n\nProvenance: commit cccccccccccc",
+            self.assertIn("## Build (build_bench)\n\nProvenance: cccccccccccc",
                           out.getvalue())
             self.assertIn("## Render (render_bench)\n\nProvenance: no records.",
                           out.getvalue())

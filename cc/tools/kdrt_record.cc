@@ -204,7 +204,7 @@ const std::vector<double>& PassRuns(const Lane& l, bool shadow) {
 // Per round, the fastest tracing time of `lanes` on the pass, each lane's
 // time less `replay`'s; a time that is not positive (within the noise of the
 // replay) is left out, and a round with none is 0 (no ratio). As
-// experiments/bench.py's per_round_ratio does with render_bench's records.
+// experiments/bench_tables.py's per_round_ratio does with render_bench's records.
 std::vector<double> FastestTracing(const std::vector<const Lane*>& lanes, const Lane& replay,
                                    bool shadow) {
   std::vector<double> out(PassRuns(replay, shadow).size(), INFINITY);
