@@ -186,21 +186,28 @@ struct LaneHits {
   HWY_ALIGN float v[kLanes];
 };
 
+// FinishLanes' hits as vectors: t, u, v in the lanes of LaneHits::hit, the
+// other lanes unspecified.
+template <class D>
+struct LaneHitVecs {
+  hn::Vec<D> t, u, v;
+};
+
 // IntersectTriangleWatertight after RejectRays, for the `lanes` it did not
 // reject (t_max: each lane's tmax, its best hit's t so far), the triangle's
-// shear s. A lane in neither out->hit nor out->scalar misses. t_vec (if
-// given): out->t's lanes of out->hit as a vector, other lanes unspecified.
+// shear s. A lane in neither out->hit nor out->scalar misses. vecs (if
+// given): the hits as vectors too.
 // Both halves computed without the branches on an empty half and on no hit
 // (a simulated predictor counted them among the kernel's least predictable)
 // made the packet kernel 0.3-2 % slower (in-process A/B, six scenes,
 // 2026-12-06): not kept.
 template <class D>
 HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t lanes,
-                            hn::Vec<D> t_max, LaneHits* out, hn::Vec<D>* t_vec = nullptr) {
+                            hn::Vec<D> t_max, LaneHits* out, LaneHitVecs<D>* vecs = nullptr) {
 #if HWY_TARGET == HWY_SCALAR
   out->hit = 0;
   out->scalar = lanes;  // no half vectors: the scalar test does it all
-  (void)d, (void)f, (void)s, (void)t_max, (void)t_vec;
+  (void)d, (void)f, (void)s, (void)t_max, (void)vecs;
 #else
   using V = hn::Vec<D>;
   const V z[3] = {hn::Mul(f.sz, s.dz[0]), hn::Mul(f.sz, s.dz[1]), hn::Mul(f.sz, s.dz[2])};
@@ -220,7 +227,9 @@ HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint
   using VD = hn::Vec<decltype(dd)>;
   const size_t half = hn::Lanes(dh);
   const uint32_t half_bits = (1u << half) - 1;
-  hn::Vec<decltype(dh)> t_half[2] = {hn::Zero(dh), hn::Zero(dh)};
+  using VH = hn::Vec<decltype(dh)>;
+  VH t_half[2] = {hn::Zero(dh), hn::Zero(dh)}, u_half[2] = {t_half[0], t_half[0]},
+     v_half[2] = {t_half[0], t_half[0]};
   for (size_t h = 0; h < 2; ++h) {
     const uint32_t mine = (lanes >> (h * half)) & half_bits;
     if (mine == 0) continue;
@@ -272,11 +281,17 @@ HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint
     out->hit |= hit << (h * half);
     if (hit == 0) continue;
     t_half[h] = tt;
+    u_half[h] = hn::DemoteTo(dh, hn::Mul(e1, inv_det));
+    v_half[h] = hn::DemoteTo(dh, hn::Mul(e2, inv_det));
     hn::StoreU(tt, dh, out->t + h * half);
-    hn::StoreU(hn::DemoteTo(dh, hn::Mul(e1, inv_det)), dh, out->u + h * half);
-    hn::StoreU(hn::DemoteTo(dh, hn::Mul(e2, inv_det)), dh, out->v + h * half);
+    hn::StoreU(u_half[h], dh, out->u + h * half);
+    hn::StoreU(v_half[h], dh, out->v + h * half);
   }
-  if (t_vec != nullptr) *t_vec = hn::Combine(d, t_half[1], t_half[0]);
+  if (vecs != nullptr) {
+    vecs->t = hn::Combine(d, t_half[1], t_half[0]);
+    vecs->u = hn::Combine(d, u_half[1], u_half[0]);
+    vecs->v = hn::Combine(d, v_half[1], v_half[0]);
+  }
 #endif
 }
 

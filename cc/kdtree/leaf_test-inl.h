@@ -2,8 +2,8 @@
 // per target like it (Highway's per-target include guard): TestLeaf, a
 // triangle at a time against every lane, and TestLeafFew, a leaf reached by
 // few rays, each ray against a leaf packet's four triangles at once. Both
-// test with lane_test-inl.h and record hits with the single-ray traversal's
-// Closer.
+// test with lane_test-inl.h and record hits in vectors (BestLanes) with the
+// single-ray traversal's Closer.
 #if defined(KDTREE_CC_KDTREE_LEAF_TEST_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef KDTREE_CC_KDTREE_LEAF_TEST_INL_H_
 #undef KDTREE_CC_KDTREE_LEAF_TEST_INL_H_
@@ -36,124 +36,139 @@ HWY_INLINE void CountStep(uint32_t lanes, uint64_t* steps, uint64_t* visits) {
   *visits += static_cast<uint64_t>(__builtin_popcount(lanes));
 }
 
-// Lane i's hit on triangle `tri` at t (u, v), if it is the closest so far
-// (any hit: the lane is done). Whether it was recorded: the caller then sets
-// lane i of its best t's vector (closest hit).
-template <bool kAnyHit>
-HWY_INLINE bool Record(int i, uint32_t tri, float t, float u, float v, Hit* h, uint32_t* lanes,
-                       uint32_t* found) {
-  if (!kAnyHit && !Closer(t, tri, *h)) return false;
-  h->tri = tri;
-  h->t = t;
-  h->u = u;
-  h->v = v;
-  *found |= 1u << i;
-  if (kAnyHit) *lanes &= ~(1u << i);
-  return true;
-}
-
-// Lane i of *bt set to t.
+// A vector of lanes' best hits so far, kept in registers: t, u, v and the
+// triangle (kNoHit: none yet); the kernel writes them to the caller's Hits
+// once, at the end. Against a Hit per lane in memory, updated by a scalar
+// loop over the hits, whose vector reads (each lane's best t as the next
+// test's tmax) then waited on store-to-load forwarding (in-process A/B, 7
+// paired rounds, 2026-12-06): camera pass 0.950-0.997 of the time on eight
+// scenes (bunny, city2, courtyard-1m, engine, fforest, hairball-small,
+// lost-empire, teapots), the shadow pass within noise.
 template <class D>
-HWY_INLINE void SetLane(D d, int i, float t, hn::Vec<D>* bt) {
-  *bt = hn::IfThenElse(FromBits(d, 1u << i), hn::Set(d, t), *bt);
+struct BestLanes {
+  hn::Vec<D> t, u, v;
+  hn::Vec<hn::RebindToUnsigned<D>> tri;
+};
+
+// The hits `hits` (lanes of the vector at `base`) at t, u, v on triangles
+// tri: closest hit, those Closer than the lane's best (ray.h: smaller t, at
+// equal t the smaller index); any hit, every one (the lane is done).
+template <bool kAnyHit, class D>
+HWY_INLINE void RecordLanes(D d, uint32_t hits, hn::Vec<D> t, hn::Vec<D> u, hn::Vec<D> v,
+                            hn::Vec<hn::RebindToUnsigned<D>> tri, int base, BestLanes<D>* b,
+                            uint32_t* lanes, uint32_t* found) {
+  const hn::RebindToUnsigned<D> du;
+  uint32_t take = hits;
+  if (!kAnyHit) {
+    const auto closer = hn::Or(hn::Lt(t, b->t),
+                               hn::And(hn::Eq(t, b->t), hn::RebindMask(d, hn::Lt(tri, b->tri))));
+    take &= Bits(d, closer);
+  }
+  if (take == 0) return;
+  const auto m = FromBits(d, take);
+  b->t = hn::IfThenElse(m, t, b->t);
+  b->u = hn::IfThenElse(m, u, b->u);
+  b->v = hn::IfThenElse(m, v, b->v);
+  b->tri = hn::IfThenElse(FromBits(du, take), tri, b->tri);
+  *found |= take << base;
+  if (kAnyHit) *lanes &= ~(take << base);
 }
 
-// IntersectTriangleWatertight itself for ray r of the packet and triangle l
-// of the leaf packet (with the ray's best hit so far as tmax); records a hit
-// for lane i (r - base), and says whether it did (Record).
-template <bool kAnyHit>
-HWY_INLINE bool ScalarTest(const PacketRays& p, const Group& g, const float* packet, int l,
-                           uint32_t tri, size_t base, int i, uint32_t* lanes, uint32_t* found,
-                           Hit* best) {
-  const size_t r = base + i;
-  Vec3 a, b, c;
-  PacketTriangle(packet, l, &a, &b, &c);
+// RecordLanes for one lane i.
+template <bool kAnyHit, class D>
+HWY_INLINE void RecordLane(D d, int i, float t, float u, float v, uint32_t tri, int base,
+                           BestLanes<D>* b, uint32_t* lanes, uint32_t* found) {
+  const hn::RebindToUnsigned<D> du;
+  RecordLanes<kAnyHit>(d, 1u << i, hn::Set(d, t), hn::Set(d, u), hn::Set(d, v), hn::Set(du, tri),
+                       base, b, lanes, found);
+}
+
+// IntersectTriangleWatertight itself for lane i of the vector at `base` and
+// triangle l of the leaf packet, with the lane's best t as tmax; records a
+// hit.
+template <bool kAnyHit, class D>
+HWY_INLINE void ScalarTest(D d, const PacketRays& p, const Group& g, const float* packet,
+                               int l, uint32_t tri, int base, int i, BestLanes<D>* b,
+                               uint32_t* lanes, uint32_t* found) {
+  const size_t r = static_cast<size_t>(base + i);
+  Vec3 a, bb, c;
+  PacketTriangle(packet, l, &a, &bb, &c);
   float t, u, v;
   const WatertightRay w = LaneRay(p, g.kx, g.ky, g.kz, static_cast<int>(r));
-  if (IntersectTriangleWatertight(w, a, b, c, p.tmin[r], best[r].t, &t, &u, &v)) {
-    return Record<kAnyHit>(i, tri, t, u, v, &best[r], lanes, found);
+  if (IntersectTriangleWatertight(w, a, bb, c, p.tmin[r], hn::ExtractLane(b->t, i), &t, &u, &v)) {
+    RecordLane<kAnyHit>(d, i, t, u, v, tri, base, b, lanes, found);
   }
-  return false;
 }
 
-// The lanes of `lanes` the leaf's triangles are tested against; updates best
-// and *bt, the lanes' best t (closest hit), or `lanes` and *found (any hit: a
-// lane with a hit is done). Tried and not kept (in-process A/B, the new code on AVX3_DL
-// against the old on AVX3, 7 paired rounds, 2026-12-06): prefetching the next
-// leaf packet (T_R 0.995-1.015 old over new, the control 0.998-1.009), and for
-// lanes sharing their origin (camera packets) moving the triangle to it once
-// in scalars (primary pass 2-9 % slower: the broadcasts cost more than the
-// vector subtractions they save); and the rejection of a leaf packet's four
-// triangles computed before any branch on its result (T_R 0.995-1.007 old
-// over new on six scenes: no change).
+// The leaf's triangles against the live lanes of the vector at `base`, a
+// triangle at a time; `lanes` and `found` hold the whole group's bits (any
+// hit: a lane with a hit is done). Tried and not kept (in-process A/B, the
+// new code on AVX3_DL against the old on AVX3, 7 paired rounds, 2026-12-06):
+// prefetching the next leaf packet (T_R 0.995-1.015 old over new, the
+// control 0.998-1.009), and for lanes sharing their origin (camera packets)
+// moving the triangle to it once in scalars (primary pass 2-9 % slower: the
+// broadcasts cost more than the vector subtractions they save); and the
+// rejection of a leaf packet's four triangles computed before any branch on
+// its result (T_R 0.995-1.007 old over new on six scenes: no change).
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
-                         const Group& g, size_t base, uint32_t first, uint32_t* lanes,
-                         uint32_t* found, hn::Vec<D>* bt, Hit* best, PacketCounters* c) {
+                          const Group& g, int base, uint32_t first, uint32_t* lanes,
+                          uint32_t* found, BestLanes<D>* b, PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
+  constexpr uint32_t kFull = AllLanes<D>();
   const bool origins = p.has_origins;
-  const uint32_t behind = p.behind >> base;
+  const uint32_t behind = (p.behind >> base) & kFull;
   const float* packet = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
   for (;;) {
     uint32_t id[kPacketLanes];
     std::memcpy(id, packet + kPacketIds, sizeof(id));
     const bool last = (id[0] & kLastPacket) != 0;
     id[0] &= ~kLastPacket;
-    for (int l = 0; l < kPacketLanes && *lanes != 0; ++l) {
-      if (id[l] == kPadLane) break;  // pads only follow a leaf's last triangle
+    for (int l = 0; l < kPacketLanes; ++l) {
+      const uint32_t sub = (*lanes >> base) & kFull;
+      if (sub == 0 || id[l] == kPadLane) break;  // pads only follow a leaf's last triangle
       const LaneShear<D> s = ShearLanes(d, f, BroadcastTriangle(d, g, packet, l));
-      uint32_t rays = *lanes & ~RejectRays(d, f, s, behind & *lanes);
+      uint32_t rays = sub & ~RejectRays(d, f, s, behind & sub);
+      const uint32_t own =
+          origins ? Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l]))) : 0;
       // Unconditional: a branch on rays != 0 first mispredicts often on
       // shadow rays, most of whose tests reject every ray (paired rounds on
       // 8 scenes: shadow pass 1-10 % faster without it and TestLeafFew's).
-      const uint32_t own =
-          origins ? Bits(du, hn::Eq(hn::Load(du, p.origin + base), hn::Set(du, id[l]))) : 0;
       rays &= ~own;
-      if (c != nullptr) CountStep(*lanes & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
+      if (c != nullptr) CountStep(sub & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
       if (rays == 0) continue;
       LaneHits lh;
-      hn::Vec<D> t_vec = *bt;
-      FinishLanes(d, f, s, rays, *bt, &lh, kAnyHit ? nullptr : &t_vec);
-      uint32_t recorded = 0;
-      for (uint32_t m = lh.hit; m != 0; m &= m - 1) {
-        const int i = __builtin_ctz(m);
-        if (Record<kAnyHit>(i, id[l], lh.t[i], lh.u[i], lh.v[i], &best[base + i], lanes, found)) {
-          recorded |= 1u << i;
-        }
-      }
-      if (!kAnyHit && recorded != 0) *bt = hn::IfThenElse(FromBits(d, recorded), t_vec, *bt);
+      LaneHitVecs<D> hv;
+      FinishLanes(d, f, s, rays, b->t, &lh, &hv);
+      RecordLanes<kAnyHit>(d, lh.hit, hv.t, hv.u, hv.v, hn::Set(du, id[l]), base, b, lanes, found);
       for (uint32_t m = lh.scalar; m != 0; m &= m - 1) {
-        const int i = __builtin_ctz(m);
-        if (ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, i, lanes, found, best) && !kAnyHit) {
-          SetLane(d, i, best[base + i].t, bt);
-        }
+        ScalarTest<kAnyHit>(d, p, g, packet, l, id[l], base, __builtin_ctz(m), b, lanes, found);
       }
     }
-    if (last || *lanes == 0) return;
+    if (last || ((*lanes >> base) & kFull) == 0) return;
     packet += kPacketFloats;
   }
 }
 
-// TestLeaf for at most Lanes(d) / kPacketLanes rays: each block of
-// kPacketLanes vector lanes holds one ray (its frame permuted there) against
-// the leaf packet's kPacketLanes triangles, so a leaf packet takes one vector
-// test instead of one per triangle. The triangles of a leaf packet are
-// tested at once, not one after the other; a hit beyond the ray's best so
-// far is dropped by Record's Closer, so every ray ends with the same closest
-// hit (any hit: a ray leaves at its first hit; the others found with it in
-// the same vector are dropped).
+// TestLeaf for the lanes `set` of the vector at `base` (bits relative to
+// it), at most Lanes(d) / kPacketLanes of them: each block of kPacketLanes
+// vector lanes holds one ray (its frame permuted there) against the leaf
+// packet's kPacketLanes triangles, so a leaf packet takes one vector test
+// instead of one per triangle. The triangles of a leaf packet are tested at
+// once, not one after the other, and their hits recorded one by one: one
+// beyond the ray's best so far is not Closer, so every ray ends with the
+// same closest hit (any hit: a ray leaves at its first hit; the others found
+// with it in the same vector are dropped).
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
-                            const Group& g, size_t base, uint32_t first, uint32_t* lanes,
-                            uint32_t* found, hn::Vec<D>* bt, Hit* best, PacketCounters* c) {
+                             const Group& g, int base, uint32_t first, uint32_t set,
+                             uint32_t* lanes, uint32_t* found, BestLanes<D>* b,
+                             PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   const size_t n = hn::Lanes(d);
-  // Block k holds ray ray[k]; blocks past the rays repeat the last one.
   int ray[kLanes / kPacketLanes];
   int rays_in = 0;
-  for (uint32_t m = *lanes; m != 0; m &= m - 1) ray[rays_in++] = __builtin_ctz(m);
-  // The kernel passes 1 to Lanes(d) / kPacketLanes rays (so ray[rays_in - 1]
-  // below is a ray; telling the compiler also ends its -Warray-bounds).
+  for (uint32_t m = set; m != 0; m &= m - 1) ray[rays_in++] = __builtin_ctz(m);
   if (rays_in == 0) __builtin_unreachable();
   HWY_ALIGN int32_t index[kLanes];
   for (size_t j = 0; j < n; ++j) {
@@ -183,12 +198,11 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
     // (in-process A/B, 7 paired rounds, six scenes, 2026-12-06): shadow pass
     // 0.949-0.986 of the old time, camera 0.976-1.033, but the control (the
     // same code on both sides) gave shadow 0.969-0.991: within noise.
-    const auto ids = hn::And(
-        hn::BitCast(du, hn::LoadDup128(d, packet + kPacketIds)),
-        hn::LoadDup128(du, kIdMask));
+    const auto ids = hn::And(hn::BitCast(du, hn::LoadDup128(d, packet + kPacketIds)),
+                             hn::LoadDup128(du, kIdMask));
     uint32_t live = 0;  // the blocks of rays still looking (any hit: some are done)
     for (int k = 0; k < rays_in; ++k) {
-      if ((*lanes >> ray[k]) & 1) live |= kBlock << (k * kPacketLanes);
+      if ((*lanes >> (base + ray[k])) & 1) live |= kBlock << (k * kPacketLanes);
     }
     live &= ~Bits(du, hn::Eq(ids, hn::Set(du, kPadLane)));
     const LaneShear<D> s = ShearLanes(d, pf, RepeatTriangles(d, g, packet));
@@ -198,22 +212,19 @@ HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const 
     if (c != nullptr) CountStep(live & ~own, &c->triangle_steps, &c->lanes.triangle_tests);
     if (rays != 0) {
       LaneHits lh;
-      FinishLanes(d, pf, s, rays, hn::TableLookupLanes(*bt, perm), &lh);
+      FinishLanes(d, pf, s, rays, hn::TableLookupLanes(b->t, perm), &lh);
       for (uint32_t m = lh.hit | lh.scalar; m != 0; m &= m - 1) {
         const int j = __builtin_ctz(m);
         const int i = index[j], l = j % kPacketLanes;
-        if (kAnyHit && !((*lanes >> i) & 1)) continue;  // found already
-        bool recorded;
+        if (kAnyHit && !((*lanes >> (base + i)) & 1)) continue;  // found already
         if ((lh.hit >> j) & 1) {
-          recorded =
-              Record<kAnyHit>(i, id[l], lh.t[j], lh.u[j], lh.v[j], &best[base + i], lanes, found);
+          RecordLane<kAnyHit>(d, i, lh.t[j], lh.u[j], lh.v[j], id[l], base, b, lanes, found);
         } else {
-          recorded = ScalarTest<kAnyHit>(p, g, packet, l, id[l], base, i, lanes, found, best);
+          ScalarTest<kAnyHit>(d, p, g, packet, l, id[l], base, i, b, lanes, found);
         }
-        if (!kAnyHit && recorded) SetLane(d, i, best[base + i].t, bt);
       }
     }
-    if (last || *lanes == 0) return;
+    if (last || ((*lanes >> base) & set) == 0) return;
     packet += kPacketFloats;
   }
 }

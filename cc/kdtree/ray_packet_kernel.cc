@@ -79,38 +79,27 @@ struct Stack {
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
                                const Frames<D>& frames, const Group& g, int base, uint32_t leaf,
-                               uint32_t* lanes, uint32_t* found, hn::Vec<D>* bt, Hit* best,
+                               uint32_t* lanes, uint32_t* found, BestLanes<D>* b,
                                PacketCounters* c) {
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
-  constexpr uint32_t kFull = AllLanes<D>();
-  uint32_t sub = (*lanes >> base) & kFull;
+  const uint32_t sub = (*lanes >> base) & AllLanes<D>();
   if (sub == 0) return;
-  uint32_t sub_found = (*found >> base) & kFull;
-  bool few = false;
   if constexpr (kFewRays) {
-    few = __builtin_popcount(sub) * kPacketLanes <= kFewSets * n;
-    if (few) {
+    if (__builtin_popcount(sub) * kPacketLanes <= kFewSets * n) {
       // Rays are independent: a few at a time, each set as many as fit.
       constexpr int kPerSet = n / kPacketLanes;
-      uint32_t rest = sub;
-      while (rest != 0) {
+      for (uint32_t rest = sub; rest != 0;) {
         uint32_t set = 0;
         for (int k = 0; k < kPerSet && rest != 0; ++k) {
           set |= rest & -rest;
           rest &= rest - 1;
         }
-        uint32_t set_lanes = set;
-        TestLeafFew<kAnyHit>(d, tree, p, frames, g, base, leaf, &set_lanes, &sub_found,
-                             bt, best, c);
-        sub = (sub & ~set) | set_lanes;
+        TestLeafFew<kAnyHit>(d, tree, p, frames, g, base, leaf, set, lanes, found, b, c);
       }
+      return;
     }
   }
-  if (!few) {
-    TestLeaf<kAnyHit>(d, tree, p, frames, g, base, leaf, &sub, &sub_found, bt, best, c);
-  }
-  *lanes = (*lanes & ~(kFull << base)) | (sub << base);
-  *found = (*found & ~(kFull << base)) | (sub_found << base);
+  TestLeaf<kAnyHit>(d, tree, p, frames, g, base, leaf, lanes, found, b, c);
 }
 
 // Where the kernel's time goes (in-process A/B as below, 7 paired rounds,
@@ -189,19 +178,42 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
   }
   Frames<D> frames[kV];
   for (int v = 0; v < kV; ++v) frames[v] = Frames<D>(d, p, v * n);
-  // Each lane's best t so far: its ray's tmax, as best[i].t holds on entry.
-  // Kept in vectors, set lane by lane from the hits (leaf_test-inl.h): as an
-  // array written a float at a time, every vector read of it after a hit
-  // (FinishLanes' tmax, the pop's cull) waited for store-to-load forwarding
-  // (in-process A/B, 7 paired rounds, six scenes, 2026-12-06: camera pass
-  // 0.982-0.999 of the time, against a control of 0.992-1.012; shadow
-  // unchanged).
-  V bt[kV];
-  for (int v = 0; v < kV; ++v) bt[v] = hn::Load(d, p.tmax + v * n);
+  // Each lane's best hit so far (leaf_test-inl.h BestLanes), in vectors: no
+  // hit yet, at the ray's tmax (as best[i] holds on entry). Kept in an array
+  // of floats written one at a time, every vector read of the best t after a
+  // hit (FinishLanes' tmax, the pop's cull) waited for store-to-load
+  // forwarding (in-process A/B, 7 paired rounds, six scenes, 2026-12-06:
+  // camera pass 0.982-0.999 of the time, against a control of 0.992-1.012;
+  // the whole hit in vectors then 0.950-0.997 of that on eight scenes).
+  uint32_t found = 0, index = 0;
+  const hn::RebindToUnsigned<D> du;
+  BestLanes<D> bl[kV];
+  for (int v = 0; v < kV; ++v) {
+    bl[v].t = hn::Load(d, p.tmax + v * n);
+    bl[v].u = bl[v].v = hn::Zero(d);
+    bl[v].tri = hn::Set(du, kNoHit);
+  }
+  // The lanes with a hit get it in best[] (the others keep their miss).
+  const auto finish = [&]() {
+    HWY_ALIGN float t[kLanes], u[kLanes], w[kLanes];
+    HWY_ALIGN uint32_t tri[kLanes];
+    for (int v = 0; v < kV; ++v) {
+      hn::Store(bl[v].t, d, t + v * n);
+      hn::Store(bl[v].u, d, u + v * n);
+      hn::Store(bl[v].v, d, w + v * n);
+      hn::Store(bl[v].tri, du, tri + v * n);
+    }
+    for (uint32_t m = found; m != 0; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      best[i].tri = tri[i];
+      best[i].t = t[i];
+      best[i].u = u[i];
+      best[i].v = w[i];
+    }
+  };
   const KdNode* nodes = tree.nodes.data();
   Stack stack;
   int top = 0;
-  uint32_t found = 0, index = 0;
   for (;;) {
     const KdNode* node = &nodes[index];
     while (!node->is_leaf()) {
@@ -278,19 +290,22 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
     if (node->index() != kEmptyLeaf) {
       for (int v = 0; v < kV; ++v) {
         TestLeafVector<kAnyHit>(d, tree, p, frames[v], g, v * n, node->index(), &lanes, &found,
-                                &bt[v], best, c);
+                                &bl[v], c);
       }
     }
     // Next node: each lane drops it when it starts beyond that lane's best
     // hit plus slack (any hit: lanes with a hit are done).
     for (;;) {
-      if (top == 0) return;
+      if (top == 0) {
+        finish();
+        return;
+      }
       --top;
       uint32_t m = stack.lanes[top] & ~(kAnyHit ? found : 0u);
       if (!kAnyHit && (m & found) != 0) {
         uint32_t beyond = 0;
         for (int v = 0; v < kV; ++v) {
-          const V limit = hn::Add(bt[v], slack[v]);
+          const V limit = hn::Add(bl[v].t, slack[v]);
           beyond |= Bits(d, hn::Gt(hn::Load(d, stack.t_entry[top] + v * n), limit)) << (v * n);
         }
         m &= ~(beyond & found);
