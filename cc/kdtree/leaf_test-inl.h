@@ -38,12 +38,12 @@ HWY_INLINE void CountStep(uint32_t lanes, uint64_t* steps, uint64_t* visits) {
 
 // A vector of lanes' best hits so far, kept in registers: t, u, v and the
 // triangle (kNoHit: none yet); the kernel writes them to the caller's Hits
-// once, at the end. Against a Hit per lane in memory, updated by a scalar
-// loop over the hits, whose vector reads (each lane's best t as the next
-// test's tmax) then waited on store-to-load forwarding (in-process A/B, 7
-// paired rounds, 2026-12-06): camera pass 0.950-0.997 of the time on eight
-// scenes (bunny, city2, courtyard-1m, engine, fforest, hairball-small,
-// lost-empire, teapots), the shadow pass within noise.
+// once, at the end. Against a Hit per lane in memory, recorded by a scalar
+// loop over each triangle's hits (Closer, four stores), with the best t
+// already in a vector (in-process A/B, 7 paired rounds, 2026-12-06): camera
+// pass 0.950-0.997 of the time on eight scenes (bunny, city2, courtyard-1m,
+// engine, fforest, hairball-small, lost-empire, teapots), the shadow pass
+// within noise.
 template <class D>
 struct BestLanes {
   hn::Vec<D> t, u, v;
@@ -87,9 +87,9 @@ HWY_INLINE void RecordLane(D d, int i, float t, float u, float v, uint32_t tri, 
 // triangle l of the leaf packet, with the lane's best t as tmax; records a
 // hit.
 template <bool kAnyHit, class D>
-HWY_INLINE void ScalarTest(D d, const PacketRays& p, const Group& g, const float* packet,
-                               int l, uint32_t tri, int base, int i, BestLanes<D>* b,
-                               uint32_t* lanes, uint32_t* found) {
+HWY_INLINE void ScalarTest(D d, const PacketRays& p, const Group& g, const float* packet, int l,
+                           uint32_t tri, int base, int i, BestLanes<D>* b, uint32_t* lanes,
+                           uint32_t* found) {
   const size_t r = static_cast<size_t>(base + i);
   Vec3 a, bb, c;
   PacketTriangle(packet, l, &a, &bb, &c);
@@ -112,8 +112,8 @@ HWY_INLINE void ScalarTest(D d, const PacketRays& p, const Group& g, const float
 // its result (T_R 0.995-1.007 old over new on six scenes: no change).
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
-                          const Group& g, int base, uint32_t first, uint32_t* lanes,
-                          uint32_t* found, BestLanes<D>* b, PacketCounters* c) {
+                         const Group& g, int base, uint32_t first, uint32_t* lanes,
+                         uint32_t* found, BestLanes<D>* b, PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   constexpr uint32_t kFull = AllLanes<D>();
   const bool origins = p.has_origins;
@@ -161,9 +161,9 @@ HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Fra
 // with it in the same vector are dropped).
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeafFew(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
-                             const Group& g, int base, uint32_t first, uint32_t set,
-                             uint32_t* lanes, uint32_t* found, BestLanes<D>* b,
-                             PacketCounters* c) {
+                            const Group& g, int base, uint32_t first, uint32_t set,
+                            uint32_t* lanes, uint32_t* found, BestLanes<D>* b,
+                            PacketCounters* c) {
   const hn::RebindToUnsigned<D> du;
   const size_t n = hn::Lanes(d);
   int ray[kLanes / kPacketLanes];
