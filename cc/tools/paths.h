@@ -1,5 +1,6 @@
-// Paths of the tools and benchmarks: the checkout they run on, and paths given
-// on the command line of a tool started with `bazel run`.
+// Paths of the tools and benchmarks: the checkout they run on, paths given on
+// the command line of a tool started with `bazel run`, and writing a file
+// whose directory may not exist yet.
 #ifndef KDTREE_CC_TOOLS_PATHS_H_
 #define KDTREE_CC_TOOLS_PATHS_H_
 
