@@ -95,15 +95,24 @@ const Lane* FindLane(const std::vector<Lane>& lanes, const std::string& name) {
   return nullptr;
 }
 
-// Per round all `lanes` have, the fastest of their render times.
-std::vector<double> FastestPerRound(const std::vector<const Lane*>& lanes) {
+// Per round all of `runs` have, the smallest of their times (none without
+// runs).
+std::vector<double> MinPerRound(const std::vector<std::vector<double>>& runs) {
+  if (runs.empty()) return {};
   size_t n = SIZE_MAX;
-  for (const Lane* l : lanes) n = std::min(n, l->timed.t_r.size());
+  for (const std::vector<double>& r : runs) n = std::min(n, r.size());
   std::vector<double> out(n, INFINITY);
-  for (const Lane* l : lanes) {
-    for (size_t i = 0; i < n; ++i) out[i] = std::min(out[i], l->timed.t_r[i]);
+  for (const std::vector<double>& r : runs) {
+    for (size_t i = 0; i < n; ++i) out[i] = std::min(out[i], r[i]);
   }
   return out;
+}
+
+// Per round all `lanes` have, the fastest of their render times.
+std::vector<double> FastestPerRound(const std::vector<const Lane*>& lanes) {
+  std::vector<std::vector<double>> runs;
+  for (const Lane* l : lanes) runs.push_back(l->timed.t_r);
+  return MinPerRound(runs);
 }
 
 // Per round: the fastest of `theirs` over the fastest of `ours`.
@@ -207,14 +216,12 @@ const std::vector<double>& PassRuns(const Lane& l, bool shadow) {
 // experiments/bench_tables.py's per_round_ratio does with render_bench's records.
 std::vector<double> FastestTracing(const std::vector<const Lane*>& lanes, const Lane& replay,
                                    bool shadow) {
-  std::vector<double> out(PassRuns(replay, shadow).size(), INFINITY);
+  std::vector<std::vector<double>> runs;
   for (const Lane* l : lanes) {
-    const std::vector<double> t = LessPerRound(PassRuns(*l, shadow), PassRuns(replay, shadow));
-    out.resize(std::min(out.size(), t.size()));
-    for (size_t i = 0; i < out.size(); ++i) {
-      if (t[i] > 0) out[i] = std::min(out[i], t[i]);
-    }
+    runs.push_back(LessPerRound(PassRuns(*l, shadow), PassRuns(replay, shadow)));
+    for (double& t : runs.back()) t = t > 0 ? t : INFINITY;
   }
+  std::vector<double> out = MinPerRound(runs);
   for (double& x : out) x = x == INFINITY ? 0 : x;
   return out;
 }
