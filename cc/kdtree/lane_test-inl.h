@@ -177,8 +177,8 @@ HWY_INLINE uint32_t RejectRays(D d, const Frames<D>& f, const LaneShear<D>& s, u
   return reject;
 }
 
-// What FinishLanes found: the lanes with a hit (t, u, v at the lane's index)
-// and the lanes left to the scalar test.
+// What FinishLanes found: the lanes with a hit (t, u, v at the lane's index,
+// unless given as LaneHitVecs) and the lanes left to the scalar test.
 struct LaneHits {
   uint32_t hit = 0, scalar = 0;
   HWY_ALIGN float t[kLanes];
@@ -195,8 +195,9 @@ struct LaneHitVecs {
 
 // IntersectTriangleWatertight after RejectRays, for the `lanes` it did not
 // reject (t_max: each lane's tmax, its best hit's t so far), the triangle's
-// shear s. A lane in neither out->hit nor out->scalar misses. vecs (if
-// given): the hits as vectors too.
+// shear s. A lane in neither out->hit nor out->scalar misses. The hits' t,
+// u, v go to vecs if given (the packet kernel keeps its best hits in
+// vectors), else to out->t, u, v.
 // Both halves computed without the branches on an empty half and on no hit
 // (a simulated predictor counted them among the kernel's least predictable)
 // made the packet kernel 0.3-2 % slower (in-process A/B, six scenes,
@@ -283,9 +284,11 @@ HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint
     t_half[h] = tt;
     u_half[h] = hn::DemoteTo(dh, hn::Mul(e1, inv_det));
     v_half[h] = hn::DemoteTo(dh, hn::Mul(e2, inv_det));
-    hn::StoreU(tt, dh, out->t + h * half);
-    hn::StoreU(u_half[h], dh, out->u + h * half);
-    hn::StoreU(v_half[h], dh, out->v + h * half);
+    if (vecs == nullptr) {
+      hn::StoreU(tt, dh, out->t + h * half);
+      hn::StoreU(u_half[h], dh, out->u + h * half);
+      hn::StoreU(v_half[h], dh, out->v + h * half);
+    }
   }
   if (vecs != nullptr) {
     vecs->t = hn::Combine(d, t_half[1], t_half[0]);
