@@ -14,6 +14,11 @@ alone under the machine-wide timing lock, after untimed warm-ups.
   experiments/bench.py                        # defaults below
   experiments/bench.py --build_min_tris 1000000 --render_min_tris 50000
   experiments/bench.py --repo ../other-checkout   # scenes fetched there
+  experiments/bench.py --skip_build --twice --out out/warm   # first and second traces
+
+With --twice, render_bench also times every tracer tracing each query twice
+in a row, and the summary adds how much of each tracer's time is first
+touches (experiments/bench_warm.py).
 
 Provenance: every record carries the "provenance" of the binary that made it
 (cc/base/provenance.h). Each summary states it (commit, dirty, compilation
@@ -35,6 +40,7 @@ sys.path.insert(0, ROOT)
 from analysis import provenance  # noqa: E402  (the one provenance check)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_tables  # noqa: E402  (the Markdown tables)
+import bench_warm  # noqa: E402  (the first and second traces, --twice)
 
 # The --config=opt binaries (bazel-bin follows the last build, which may be
 # a test build).
@@ -112,6 +118,8 @@ def main(argv=None):
     p.add_argument("--render_variants",
                    default="kd,kd_packet,kd_origin,kd_packet_origin")
     p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--twice", action="store_true",
+                   help="render_bench --twice: every tracer also traces each query twice")
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")
     p.add_argument("--summary_only", action="store_true")
@@ -139,7 +147,7 @@ def main(argv=None):
                      "--cache_dir", cache_dir, "--preset", a.render_preset,
                      "--threads", "1,2", "--repeats", str(a.repeats),
                      "--variants", a.render_variants,
-                     "--out", render_out])
+                     "--out", render_out] + (["--twice"] if a.twice else []))
     try:
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
         build = summarise(read(build_out), bench_tables.build_summary, build_out, *allow)
@@ -150,6 +158,7 @@ def main(argv=None):
                            render_out, *allow)
         passes = summarise(render_records, bench_tables.passes_summary, render_out, *allow)
         packets = summarise(render_records, bench_tables.packets_summary, render_out, *allow)
+        warm = summarise(render_records, bench_warm.warm_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")
@@ -164,6 +173,10 @@ def main(argv=None):
     print(passes)
     print("\n## The packet kernel's work (render_bench's packet_counts, one render)\n")
     print(packets)
+    if any(n.endswith("_twice") for r in render_records for n in r.get("tracers", {})):
+        print("\n## First and second traces (render_bench --twice, one thread, paired per "
+              "round)\n")
+        print(warm)
 
 
 if __name__ == "__main__":

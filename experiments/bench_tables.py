@@ -294,7 +294,8 @@ def targets_summary(records, robust=False):
         t = r["tracers"]
         if robust and embree_single[0] not in t:
             continue
-        ours = [n for n in t if n.startswith("kd")]
+        # Not the tracers that trace each query twice (render_bench --twice).
+        ours = [n for n in t if n.startswith("kd") and not n.endswith("_twice")]
         single = [n for n in ours if n in SINGLE_MODES]
         values = [per_round_ratio(t, embree_single, single),
                   per_round_ratio(t, embree_all, ours),

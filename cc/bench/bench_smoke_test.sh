@@ -52,6 +52,10 @@ printf 'KDTree {\n    traversalCost 30\n}\n' > kt30.env
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1 \
   --repeats=1 --warmup=0 --variants=kd_packet_origin --envs=kt30.env --env_packets \
   --embree=off --out=env.jsonl > /dev/null
+# Every tracer also tracing each query twice (--twice), with one thread only.
+"$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1,2 \
+  --repeats=1 --warmup=0 --variants=kd_origin --embree=medium --embree_packets=false \
+  --embree_robust=false --twice --out=twice.jsonl > /dev/null
 if "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --repeats=0 > /dev/null 2> err.txt; then
   echo "--repeats=0 accepted"; exit 1
 fi
@@ -162,6 +166,10 @@ check(len(env) == 1 and list(env[0]["tracers"]) == ["kd_packet_origin", "env:kt3
 check("trace_s_median" in env[0]["tracers"]["env:kt30.env"], "env: a tracing time")
 check(env[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_packet_origin": 0,
                                                              "env:kt30.env": 0}, "env: variants")
+twice = [json.loads(l) for l in open("twice.jsonl")]
+check([list(r["tracers"]) for r in twice] ==
+      [["kd_origin", "embree", "kd_origin_twice", "embree_twice", "replay", "replay_packet"],
+       ["kd_origin", "embree"]], "twice: each traced tracer again, with one thread")
 print("ok")
 PY
 grep -q "repeats" err.txt

@@ -70,6 +70,12 @@
 // kd traversal (--env_packets: as kd_packet_origin) in the same rounds:
 // constants are tuned on the same rays and
 // under the same load, and every such tree must give kd's exact hits.
+//
+// --twice adds with one thread, for each traced entry (the kd-tree variants
+// and Embree's modes), NAME_twice: the same tracer tracing every query twice in a row
+// (twice_tracer.h), timed in the same rounds. Its pass less NAME's, round by
+// round, is the second traces' time, with caches and branch predictors warm
+// from the first (experiments/bench_warm.py compares both tracers so).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -93,6 +99,7 @@
 #include "cc/bench/render_check.h"
 #include "cc/bench/render_times.h"
 #include "cc/bench/render_variants.h"
+#include "cc/bench/twice_tracer.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
 #include "cc/kdtree/brute_force.h"
@@ -146,6 +153,11 @@ ABSL_FLAG(bool, replay, true,
           "replays recorded answers (replay_tracer.h), as replay and replay_packet, and each "
           "tracer's time less the replay of its mode, round by round (trace_s_median, "
           "ratio_trace_only).");
+ABSL_FLAG(bool, twice, false,
+          "With one thread, also time each traced tracer (kd-tree variants, Embree's modes) "
+          "tracing every query twice in a row, as NAME_twice (twice_tracer.h): the second "
+          "trace's time, caches and branch predictors warm from the first, is NAME_twice's "
+          "less NAME's.");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
 
 namespace kdtree {
@@ -245,12 +257,25 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
         embrees.push_back(*std::move(e));
       }
     }
+    // Each traced entry again, tracing every query twice (--twice).
+    std::vector<std::unique_ptr<bench::TwiceTracer>> twice;
+    if (absl::GetFlag(FLAGS_twice) && threads == 1) {
+      for (size_t k = 0, n = entries.size(); k < n; ++k) {
+        twice.push_back(std::make_unique<bench::TwiceTracer>(entries[k].tracer));
+        Entry e = entries[k];
+        e.name = absl::StrCat(e.name, "_twice");
+        e.tracer = twice.back().get();
+        entries.push_back(std::move(e));
+      }
+    }
     const auto is_embree = [&](const Entry& e) {
+      const auto* t = dynamic_cast<const bench::TwiceTracer*>(e.tracer);
+      const Tracer* tracer = t != nullptr ? &t->inner() : e.tracer;
       return std::any_of(embrees.begin(), embrees.end(),
-                         [&](const auto& t) { return t.get() == e.tracer; });
+                         [&](const auto& t) { return t.get() == tracer; });
     };
     const size_t n_kd = proto->size();  // entries[0, n_kd) are kd-trees
-    const size_t n_traced = entries.size();  // then Embree's, then the replays
+    const size_t n_traced = entries.size();  // then Embree's, the twice, then the replays
     std::vector<std::unique_ptr<ReplayTracer>> replays;
     if (absl::GetFlag(FLAGS_replay) && threads == 1) {
       for (const bool packets : {false, true}) {
