@@ -91,7 +91,7 @@ def render_summary(records):
     both_all, both_packet_all = [], []
     for (scene, n, preset), by_t in sorted(rows.items(), key=lambda kv: (kv[0][1], kv[0][2])):
         one, two = by_t.get(1), by_t.get(2)
-        if one is None:
+        if one is None or "kd" not in one["tracers"]:  # --variants without kd: no row
             continue
         kd, emb = one["tracers"]["kd"], one["tracers"].get("embree")
         ratio = emb["T_R_median"] / kd["T_R_median"] if emb else None

@@ -81,6 +81,9 @@ class BenchTest(unittest.TestCase):
         self.assertIn("Paired kd/Embree over 1 rows: median 0.55", text)
         self.assertIn("0/301 brute-force mismatches, 3 Embree disagreements", row)
         self.assertIn("median 0.50", text)
+        # A run without the kd variant (--variants kd_origin,...): no row.
+        no_kd = dict(one, tracers={"kd_origin": {"T_R_median": 0.2}})
+        self.assertEqual(len(bench_tables.render_summary([no_kd]).splitlines()), 2)
 
     def test_render_summary_names_scenes_whose_camera_or_light_sees_little(self):
         def rec(scene, n, seen, occluded=None):
