@@ -95,6 +95,10 @@ FIELDS = {
     "shadow_packets_ratio_runs": "fast_render.passes.shadow_packets.paired_ratio_runs",
     "robust_wrong_primary": "fast_render.embree_robust.wrong.primary",
     "robust_wrong_shadow": "fast_render.embree_robust.wrong.shadow",
+    # Its disagreements with our tree, and those of them at a ray's origin
+    # (cc/render/compare.h: within rounding of a reported triangle's plane).
+    "robust_disagree": "fast_render.embree_robust.disagreements",
+    "robust_at_origin": "fast_render.embree_robust.disagreements_at_origin",
     "all_rays_per_s": "all_rays_per_s",
     "N_IT": "N_IT", "N_TR": "N_TR",
     "N_I": "N_I", "N_L": "N_L", "N_TP": "N_TP", "N_AP": "N_AP",

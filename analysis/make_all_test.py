@@ -46,7 +46,7 @@ EXPECTED_MACROS = [
     *[p + s for p in ("EmbreeSingle", "EmbreeRobust", "EmbreeRobustBest")
       for s in ("Scenes", "RatioMedian", "RatioMin", "RatioMax", "BigScenes",
                 "BigAtLeastSeventy", "BigAtLeastEighty", "BigAtLeastOne")],
-    "EmbreeRobustWrongScenes",
+    "EmbreeRobustWrongScenes", "EmbreeRobustAtOriginClause",
     "EmbreeOtherDisagreements", "EmbreeGrazingDisagreements",
     "EmbreeAtOriginDisagreements", "EmbreeKdWrong", "EmbreeEmbreeWrong",
     "BinnedScenes", "BinnedBuildOverEmbreeMedian", "BinnedPerfOverEmbreeMedian",

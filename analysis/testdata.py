@@ -298,6 +298,7 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=No
             "single_paired_ratio": statistics.median(robust_single),
             "best_paired_ratio_runs": list(best_r),
             "best_paired_ratio": statistics.median(best_r), "disagreements": wrong,
+            "disagreements_at_origin": wrong - 1,
             "wrong": {"primary": 0, "shadow": wrong, "ao": 0}}
     if passes is not None:
         n = len(ratios)

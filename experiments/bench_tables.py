@@ -281,12 +281,15 @@ def targets_summary(records, robust=False):
     replays, by tracing time alone. With `robust`, against Embree built with
     RTC_SCENE_FLAG_ROBUST instead (rows without it are left out), with the
     rays it answers wrongly (render_bench's validation: its answer differs
-    from ours and the exact check, compare.h, sides with ours)."""
+    from ours and the exact check, compare.h, sides with ours) and how many of
+    the rays it disagrees on start within rounding of a reported triangle's
+    plane (compare.h's at_origin: a ray spawned from a surface)."""
     embree_single = EMBREE_ROBUST_SINGLE if robust else EMBREE_SINGLE
     embree_all = EMBREE_ROBUST_ALL if robust else EMBREE_ALL
     out = ["| scene | triangles | preset | single rays / Embree's single rays "
            "| best mode / Embree's best mode | tracing alone: single / single "
-           "| tracing alone: best / best |%s" % (" Embree wrong: primary, shadow |"
+           "| tracing alone: best / best |%s" % (" Embree wrong: primary, shadow "
+                                                  "(disagreeing at the origin) |"
                                                   if robust else ""),
            "|---|---|---|---|---|---|---|%s" % ("---|" if robust else "")]
     columns = [[], [], [], []]
@@ -311,8 +314,9 @@ def targets_summary(records, robust=False):
             cells.append("%.2f [%.2f..%.2f]%s" % (value + (" (met)" if value[0] >= bar else "",)))
         if robust:
             d = r.get("validation", {}).get("embree_robust_disagreements") or {}
-            cells.append("%s, %s" % tuple(format(d.get(k, {}).get("other_wrong", 0), ",")
-                                          for k in ("primary", "shadow")))
+            cells.append("%s, %s (%s)" % (
+                tuple(format(d.get(k, {}).get("other_wrong", 0), ",")
+                      for k in ("primary", "shadow")) + (format(d.get("at_origin", 0), ","),)))
         out.append("| %s | %s | %s | %s |" % (r["scene"], format(r["n_tri"], ","), r["preset"],
                                               " | ".join(cells)))
     names = ("Single rays against Embree's single rays", "Best mode against Embree's best mode",

@@ -200,7 +200,11 @@ void AddRobustEmbree(const std::vector<Lane>& lanes, const Json& disagreements, 
       {"packets_T_R", Median(erp->timed.t_r)}, {"packets_T_R_runs", erp->timed.t_r},
       {"single_paired_ratio_runs", single},   {"single_paired_ratio", Median(single)},
       {"best_paired_ratio_runs", best},       {"best_paired_ratio", Median(best)},
-      {"disagreements", disagreements["total"]}, {"wrong", wrong}};
+      {"disagreements", disagreements["total"]},
+      // Of them, rays whose origin lies within rounding of a reported
+      // triangle's plane (compare.h): rays spawned from a surface.
+      {"disagreements_at_origin", disagreements["at_origin"]},
+      {"wrong", wrong}};
 }
 
 namespace {

@@ -143,6 +143,8 @@ check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, s, q) for e, p, k, s,
           f["T_R_runs"])],
       "best mode against best mode, per round")
 check(rob["wrong"]["primary"] == 0 and rob["disagreements"] >= 0, "robust Embree's answers")
+check(0 <= rob["disagreements_at_origin"] <= rob["disagreements"],
+      "robust Embree's disagreements at a ray's origin")
 ps = f["passes"]
 check(all(len(ps[k]) == 2 for k in ("replay_primary_s_runs", "replay_shadow_s_runs",
                                      "replay_packets_primary_s_runs",
