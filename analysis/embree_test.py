@@ -172,8 +172,11 @@ class EmbreeTest(Fixture):
         self.assertEqual(macros["EmbreeRobustBigAtLeastEighty"][0], "1")
         self.assertEqual(macros["EmbreeRobustBestRatioMedian"][0], "1.00")
         self.assertEqual(macros["EmbreeRobustWrongScenes"][0], "1")
+        clause, raw = macros["EmbreeRobustAtOriginClause"]
         self.assertIn("Of the 1,234 rays on which it and our tree disagree, 1,233 start within",
-                      macros["EmbreeRobustAtOriginClause"][0])
+                      clause)
+        self.assertIn("Section~\\ref{sec:robust}", clause)
+        self.assertTrue(raw)  # LaTeX as it stands
         with open(os.path.join(self.out, "embree_robust.tex"), encoding="utf-8") as f:
             table = f.read()
         self.assertIn("alpha & 60,000 & 0.80 & 0.82 & 0.85 & 1.00 & 0 & 1,234", table)
