@@ -18,7 +18,10 @@ alone under the machine-wide timing lock, after untimed warm-ups.
 
 With --twice, render_bench also times every tracer tracing each query twice
 in a row, and the summary adds how much of each tracer's time is first
-touches (experiments/bench_warm.py).
+touches (experiments/bench_warm.py). With --processes N, each scene's
+render_bench runs N times (the scenes in turn, N passes), and the summary
+pools the rounds of a scene's processes (experiments/bench_merge.py): the
+same paired ratio moves between processes by more than between rounds.
 
 Provenance: every record carries the "provenance" of the binary that made it
 (cc/base/provenance.h). Each summary states it (commit, dirty, compilation
@@ -40,6 +43,7 @@ sys.path.insert(0, ROOT)
 from analysis import provenance  # noqa: E402  (the one provenance check)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_tables  # noqa: E402  (the Markdown tables)
+import bench_merge  # noqa: E402  (several processes' rounds pooled, --processes)
 import bench_warm  # noqa: E402  (the first and second traces, --twice)
 
 # The --config=opt binaries (bazel-bin follows the last build, which may be
@@ -120,6 +124,8 @@ def main(argv=None):
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--twice", action="store_true",
                    help="render_bench --twice: every tracer also traces each query twice")
+    p.add_argument("--processes", type=int, default=1,
+                   help="render_bench processes per scene, their rounds pooled in the summary")
     p.add_argument("--skip_build", action="store_true")
     p.add_argument("--skip_render", action="store_true")
     p.add_argument("--summary_only", action="store_true")
@@ -142,16 +148,18 @@ def main(argv=None):
                      "--name", name, "--cache_dir", cache_dir, "--presets", a.build_presets,
                      "--threads", "1,2", "--repeats", str(a.repeats), "--out", build_out])
         if not a.skip_render:
-            for name, _ in scenes_from_index(index, a.render_min_tris, a.scenes):
-                run([os.path.join(BIN, "render_bench"), "--repo", a.repo, "--scenes", name,
-                     "--cache_dir", cache_dir, "--preset", a.render_preset,
-                     "--threads", "1,2", "--repeats", str(a.repeats),
-                     "--variants", a.render_variants,
-                     "--out", render_out] + (["--twice"] if a.twice else []))
+            scenes = scenes_from_index(index, a.render_min_tris, a.scenes)
+            for _ in range(a.processes):  # the scenes in turn, once per pass
+                for name, _ in scenes:
+                    run([os.path.join(BIN, "render_bench"), "--repo", a.repo, "--scenes", name,
+                         "--cache_dir", cache_dir, "--preset", a.render_preset,
+                         "--threads", "1,2", "--repeats", str(a.repeats),
+                         "--variants", a.render_variants,
+                         "--out", render_out] + (["--twice"] if a.twice else []))
     try:
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
         build = summarise(read(build_out), bench_tables.build_summary, build_out, *allow)
-        render_records = read(render_out)
+        render_records = bench_merge.merge_processes(read(render_out))
         render = summarise(render_records, bench_tables.render_summary, render_out, *allow)
         targets = summarise(render_records, bench_tables.targets_summary, render_out, *allow)
         robust = summarise(render_records, lambda r: bench_tables.targets_summary(r, robust=True),
@@ -164,6 +172,9 @@ def main(argv=None):
     print("## Build (build_bench)\n")
     print(build)
     print("\n## Render (render_bench)\n")
+    pooled = bench_merge.processes_line(render_records)
+    if pooled:
+        print(pooled + "\n")
     print(render)
     print("\n## Issue 23's targets (render_bench, one thread, paired per round)\n")
     print(targets)
