@@ -72,10 +72,11 @@
 // under the same load, and every such tree must give kd's exact hits.
 //
 // --twice adds with one thread, for each traced entry (the kd-tree variants
-// and Embree's modes), NAME_twice: the same tracer tracing every query twice in a row
-// (twice_tracer.h), timed in the same rounds. Its pass less NAME's, round by
-// round, is the second traces' time, with caches and branch predictors warm
-// from the first (experiments/bench_warm.py compares both tracers so).
+// and Embree's modes), NAME_twice: the same tracer tracing every query twice
+// in a row (twice_tracer.h), timed in the same rounds. Its pass less NAME's,
+// round by round, is the second traces' time, with caches and branch
+// predictors warm from the first (experiments/bench_warm.py compares both
+// tracers so).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -269,8 +270,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
       }
     }
     const auto is_embree = [&](const Entry& e) {
-      const auto* t = dynamic_cast<const bench::TwiceTracer*>(e.tracer);
-      const Tracer* tracer = t != nullptr ? &t->inner() : e.tracer;
+      const auto* w = dynamic_cast<const bench::TwiceTracer*>(e.tracer);
+      const Tracer* tracer = w != nullptr ? &w->inner() : e.tracer;
       return std::any_of(embrees.begin(), embrees.end(),
                          [&](const auto& t) { return t.get() == tracer; });
     };
