@@ -45,12 +45,14 @@
 // renders --warmup times untimed (recorded apart as T_R_warmup_runs); the
 // rounds of a thread count hold the machine-wide TimingLock
 // (cc/base/timing_lock.h), so no other timed step of this project runs beside
-// them, while the validation, Embree's build and disagreement count and the
-// warm-ups run outside it. Every record carries "provenance"
-// (cc/base/provenance.h: commit, dirty, source tree, compilation mode, CPU,
-// the lock) of the workspace ($BUILD_WORKSPACE_DIRECTORY, else the current
-// directory) and "timing" (method, rounds, warm-ups, seconds spent waiting for
-// the lock). The record is written with nlohmann-json.
+// them, and with one thread run pinned to the quieter CPU
+// (cc/base/quiet_cpu.h), while the validation, Embree's build and
+// disagreement count and the warm-ups run outside it. Every record carries
+// "provenance" (cc/base/provenance.h: commit, dirty, source tree, compilation
+// mode, CPU, the lock) of the workspace ($BUILD_WORKSPACE_DIRECTORY, else the
+// current directory) and "timing" (method, rounds, warm-ups, seconds spent
+// waiting for the lock; with one thread, the CPU of the rounds and each CPU's
+// probe). The record is written with nlohmann-json.
 //
 // Variants: "kd" (the default traversal, traversal.h), "kd_packet" (kd's
 // tree, primary and shadow rays in packets of 4x4 pixels, RenderOptions::packets,
@@ -94,6 +96,7 @@
 #include "absl/strings/str_split.h"
 #include "cc/base/json_line.h"
 #include "cc/base/provenance.h"
+#include "cc/base/quiet_cpu.h"
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
 #include "cc/bench/packet_counts.h"
@@ -332,6 +335,9 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
     const int repeats = absl::GetFlag(FLAGS_repeats);
     const double waited_before = ctx.lock->waited_seconds();
     if (absl::Status st = ctx.lock->Acquire(); !st.ok()) return st;
+    // One thread: the rounds on the quieter CPU (quiet_cpu.h).
+    std::optional<ScopedQuietCpu> quiet;
+    if (threads == 1) quiet.emplace();
     for (int round = 0; round < repeats; ++round) {
       for (size_t k = 0; k < entries.size(); ++k) {
         Entry& e = entries[(k + round) % entries.size()];
@@ -345,6 +351,12 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
         e.secondary.push_back(r->shadow.seconds + r->ao.seconds);
         e.rays = r->total_rays();
       }
+    }
+    Json cpu = nullptr, probes = Json::object();
+    if (quiet) {
+      cpu = quiet->cpu();
+      for (const CpuProbe& p : quiet->probes()) probes[std::to_string(p.cpu)] = p.ms;
+      quiet.reset();
     }
     ctx.lock->Release();
     const double lock_wait_s = ctx.lock->waited_seconds() - waited_before;
@@ -391,11 +403,15 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                          {"embree_disagreements", disagree},
                          {"embree_robust_disagreements", disagree_robust}};
     rec["timing"] = {{"method", "warm-up excluded; then rounds rendering every tracer once, in an "
-                                "order rotating per round, alone under the timing lock; ratios "
-                                "paired per round"},
+                                "order rotating per round, alone under the timing lock (one "
+                                "thread: on the quieter CPU); ratios paired per round"},
                      {"rounds", repeats},
                      {"warmup", warmup},
-                     {"lock_wait_s", lock_wait_s}};
+                     {"lock_wait_s", lock_wait_s},
+                     // With one thread, the CPU the rounds ran on and each
+                     // CPU's probe (quiet_cpu.h, ms); null otherwise.
+                     {"cpu", cpu},
+                     {"cpu_probe_ms", probes.empty() ? Json(nullptr) : probes}};
     rec["provenance"] = ctx.provenance;
     const std::string line = JsonLine(rec);
     if (!bench::WriteLine(stdout, line) || !bench::WriteLine(out, line)) {

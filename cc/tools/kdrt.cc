@@ -28,6 +28,7 @@
 // second of render time although T_R includes the shadow rays
 // (width * height in place of 640,000); all_rays_per_s counts every ray.
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,7 @@
 #include "cc/base/json_line.h"
 #include "cc/base/median.h"
 #include "cc/base/provenance.h"
+#include "cc/base/quiet_cpu.h"
 #include "cc/base/timing_lock.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/io/soup_cache.h"
@@ -231,7 +233,7 @@ absl::StatusOr<TriangleSoup> LoadScene(RunFlags* f, LoadReport* load) {
 // The record's fields that describe the run: scene, mesh, configuration,
 // view and the timing method.
 Json RunFields(const RunFlags& f, const TriangleSoup& soup, const LoadReport& load, size_t rounds,
-               const TimingLock& lock, const Progress& progress) {
+               const TimingLock& lock, const Progress& progress, const Json& cpu) {
   const ResolvedConfig& rc = f.rc;
   Json rec = {{"scene", f.scene}, {"mesh", f.mesh}, {"n_tri", soup.size()}, {"load_s", load.load_seconds},
               {"dropped_at_load",
@@ -246,9 +248,10 @@ Json RunFields(const RunFlags& f, const TriangleSoup& soup, const LoadReport& lo
               {"threads", f.threads}, {"repeats", f.repeats}, {"repeat_budget_s", f.budget_s}};
   rec["timing"] = {{"method", "untimed warm-ups first (a build of each tracer; renders: the kd-tree's recording render, "
                               "Embree's comparison pass), then alone under the lock rounds alternating the tracers, "
-                              "renders then builds; ratios paired per round"},
+                              "renders (one thread: on the quieter CPU) then builds; ratios paired per round"},
                    {"rounds", rounds}, {"lock_wait_s", lock.waited_seconds()},
-                   {"phases_s", progress.phases()}};
+                   {"phases_s", progress.phases()}, {"cpu", cpu["cpu"]},
+                   {"cpu_probe_ms", cpu["cpu_probe_ms"]}};
   return rec;
 }
 
@@ -311,7 +314,18 @@ absl::Status Run() {
   progress.Step("waiting for the timing lock");
   if (!(st = lock.Acquire()).ok()) return st;
   progress.Phase("waiting for the timing lock");
+  // One render thread: the timed renders on the quieter CPU (quiet_cpu.h);
+  // the timed builds may use every CPU.
+  std::optional<ScopedQuietCpu> quiet;
+  if (f.threads == 1) quiet.emplace();
   if (!(st = TimeRounds(*soup, f.view, f.repeats, f.budget_s, &lanes, step)).ok()) return st;
+  Json cpu = Json::object();  // the CPU of the rounds and each CPU's probe (ms), or nulls
+  cpu["cpu"] = quiet ? Json(quiet->cpu()) : Json();
+  cpu["cpu_probe_ms"] = quiet ? Json::object() : Json();
+  for (const CpuProbe& p : quiet ? quiet->probes() : std::vector<CpuProbe>()) {
+    cpu["cpu_probe_ms"][std::to_string(p.cpu)] = p.ms;
+  }
+  quiet.reset();
   progress.Phase("timed renders");
   lane_set->robust.reset();  // before the timed builds, as they free the other tracers
   // The lanes' tracers (the warm trees) are freed by the timed builds.
@@ -330,7 +344,7 @@ absl::Status Run() {
                         })).ok()) {
     return st;
   }
-  Json rec = RunFields(f, *soup, load, kl.timed.t_r.size(), lock, progress);
+  Json rec = RunFields(f, *soup, load, kl.timed.t_r.size(), lock, progress, cpu);
   rec["T_B"] = Median(b.kd_runs);
   rec["T_B_runs"] = b.kd_runs;
   rec["T_B_warmup"] = b.kd_warmup;
