@@ -159,7 +159,8 @@ def main(argv=None):
     try:
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
         build = summarise(read(build_out), bench_tables.build_summary, build_out, *allow)
-        render_records = bench_merge.merge_processes(read(render_out))
+        raw_render = read(render_out)
+        render_records = bench_merge.merge_processes(raw_render)
         render = summarise(render_records, bench_tables.render_summary, render_out, *allow)
         targets = summarise(render_records, bench_tables.targets_summary, render_out, *allow)
         robust = summarise(render_records, lambda r: bench_tables.targets_summary(r, robust=True),
@@ -172,9 +173,9 @@ def main(argv=None):
     print("## Build (build_bench)\n")
     print(build)
     print("\n## Render (render_bench)\n")
-    pooled = bench_merge.processes_line(render_records)
-    if pooled:
-        print(pooled + "\n")
+    for line in (bench_merge.processes_line(render_records), bench_merge.probe_line(raw_render)):
+        if line:
+            print(line + "\n")
     print(render)
     print("\n## Issue 23's targets (render_bench, one thread, paired per round)\n")
     print(targets)

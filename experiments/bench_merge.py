@@ -97,3 +97,32 @@ def processes_line(records):
     n = str(counts[0]) if len(counts) == 1 else "%d to %d" % (counts[0], counts[-1])
     return ("Each row pools the rounds of %s render_bench processes "
             "(experiments/bench_merge.py)." % n)
+
+
+# A record whose rounds ran on a CPU probing this much slower than the
+# quickest probe of the summary's records ran in a slow state of the machine
+# (cc/base/quiet_cpu.h): on 2026-12-06 the probe read 2.7 ms quiet and 3.5 to
+# 5.1 ms when the renderer's own camera pass ran 1.7 times slower.
+SLOW_PROBE = 1.25
+
+
+def probe_line(records):
+    """A sentence on the machine's state in the records' rounds: the probe of
+    the CPU each one-thread record's rounds ran on (timing.cpu_probe_ms at
+    timing.cpu, render_bench since f8dfb55), and how many ran slow; '' when no
+    record has it. Give it the records before merge_processes, which keeps
+    the first process's timing only."""
+    probes = []
+    for r in records:
+        t = r.get("timing") or {}
+        ms = (t.get("cpu_probe_ms") or {}).get(str(t.get("cpu")))
+        if r.get("threads") == 1 and ms is not None:
+            probes.append(ms)
+    if not probes:
+        return ""
+    fastest = min(probes)
+    slow = sum(ms > SLOW_PROBE * fastest for ms in probes)
+    return ("The CPU probe of the rounds (cc/base/quiet_cpu.h): median %.2f ms, %.2f to %.2f; "
+            "%d of %d one-thread records above %.2f times the quickest, in a slow state of the "
+            "machine." % (statistics.median(probes), fastest, max(probes), slow, len(probes),
+                          SLOW_PROBE))

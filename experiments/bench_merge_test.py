@@ -61,6 +61,20 @@ class BenchMergeTest(unittest.TestCase):
         self.assertEqual(merged[0]["tracers"], a["tracers"])  # one record: as it was
         self.assertEqual(bench_merge.processes_line(merged), "")
 
+    def test_probe_line_counts_records_in_a_slow_state(self):
+        self.assertEqual(bench_merge.probe_line([record([1.0], [0.8])]), "")
+        records = []
+        for cpu, probes in ((1, {"0": 4.0, "1": 2.7}), (0, {"0": 3.0, "1": 4.0}),
+                            (1, {"0": 4.1, "1": 3.6})):
+            r = record([1.0], [0.8])
+            r["timing"] = {"cpu": cpu, "cpu_probe_ms": probes}
+            records.append(r)
+        two = dict(records[0], threads=2)  # not counted
+        self.assertEqual(bench_merge.probe_line(records + [two]),
+                         "The CPU probe of the rounds (cc/base/quiet_cpu.h): median 3.00 ms, "
+                         "2.70 to 3.60; 1 of 3 one-thread records above 1.25 times the quickest, "
+                         "in a slow state of the machine.")
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -11,7 +11,8 @@
 // ratios 0.037 lower (the replay ran 1.7 times slower in them, the pinned
 // process's signature); the other processes agreed to 0.02. Both
 // tracers of a round run on one CPU either way; choosing the quieter one
-// takes the host's load out of the comparison.
+// takes the host's load out of the comparison while one CPU is quiet (at
+// other times both were slow; the probes, which the records keep, show it).
 //
 // ScopedQuietCpu probes each CPU the calling thread may run on
 // (sched_getaffinity) with one fixed workload (a dependent walk over 1 MiB
