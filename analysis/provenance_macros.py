@@ -9,6 +9,8 @@ When the tables were allowed to mix provenances (make_all
 value, separated by semicolons.
 """
 
+import statistics
+
 from analysis import kdtree_results as kr
 from analysis import latex
 from analysis import provenance as pv
@@ -76,7 +78,28 @@ def timing_text(records):
         parts.append("%d%s %s" % (lo, "" if lo == hi else "--%d" % hi,
                                   kind.replace("rounds", "round", 1)
                                   if hi == 1 else kind))
+    quiet = _quiet_cpu(records)
+    if quiet:
+        parts.append(quiet)
     return ", ".join(parts)
+
+
+def _quiet_cpu(records):
+    """The single-thread renders pinned to the quieter CPU (kdrt since
+    2026-12-06, cc/base/quiet_cpu.h) and the probe of the CPU they ran on:
+    how busy the machine was. '' when no record has it."""
+    probes = []
+    for r in records:
+        t = r.get("timing") if isinstance(r.get("timing"), dict) else {}
+        ms = (t.get("cpu_probe_ms") or {}).get(str(t.get("cpu")))
+        if ms is not None:
+            probes.append(ms)
+    if not probes:
+        return ""
+    return ("renders on the quieter CPU in %d of %d runs (its probe %.1f ms median, %.1f to "
+            "%.1f: higher is a busier machine)" % (len(probes), len(records),
+                                                   statistics.median(probes), min(probes),
+                                                   max(probes)))
 
 
 def _values(grouped, get):

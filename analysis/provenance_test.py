@@ -129,6 +129,17 @@ class MacrosTest(unittest.TestCase):
                          "untimed warm-up per tracer excluded, 5 paired rounds "
                          "(kd-tree and Embree alternating)")
 
+    def test_renders_on_the_quieter_cpu(self):
+        records = [testdata.kdrt_record(s, "clipping", T_R_runs=[1.0] * 3)
+                   for s in ("alpha", "beta", "gamma")]
+        records[0]["timing"] = {"cpu": 1, "cpu_probe_ms": {"0": 4.0, "1": 2.7}}
+        records[1]["timing"] = {"cpu": 0, "cpu_probe_ms": {"0": 3.5, "1": 3.9}}
+        testdata.write_kdtree(self.results, records)
+        m = {k: v[0] for k, v in provenance_macros.generate(self.ctx).items()}
+        self.assertTrue(m["ProvTiming"].endswith(
+            ", renders on the quieter CPU in 2 of 3 runs (its probe 3.1 ms median, 2.7 to 3.5: "
+            "higher is a busier machine)"), m["ProvTiming"])
+
     def test_unknown_and_unlocked(self):
         old = testdata.kdrt_record("alpha", "clipping")
         del old["provenance"]
