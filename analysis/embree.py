@@ -452,7 +452,6 @@ def generate(ctx):
     def total(key):
         return (latex.fmt_int(sum(r[key] for r in data)), False)
 
-
     return {
         **ratio_macros(data, "Embree", "ratio_final"),
         **ratio_macros(data, "EmbreePacket", "ratio_beyond"),

@@ -149,8 +149,8 @@ def main(argv=None):
                      "--threads", "1,2", "--repeats", str(a.repeats), "--out", build_out])
         if not a.skip_render:
             scenes = scenes_from_index(index, a.render_min_tris, a.scenes)
-            for _ in range(a.processes):  # the scenes in turn, once per pass
-                for name, _ in scenes:
+            for _pass in range(a.processes):  # the scenes in turn, once per pass
+                for name, _scene in scenes:
                     run([os.path.join(BIN, "render_bench"), "--repo", a.repo, "--scenes", name,
                          "--cache_dir", cache_dir, "--preset", a.render_preset,
                          "--threads", "1,2", "--repeats", str(a.repeats),
