@@ -8,6 +8,7 @@
 #include <cstring>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace kdtree {
@@ -95,6 +96,14 @@ ScopedQuietCpu::~ScopedQuietCpu() {
   cpu_set_t before;
   std::memcpy(&before, saved_.data(), sizeof(before));
   sched_setaffinity(0, sizeof(before), &before);
+}
+
+nlohmann::ordered_json QuietCpuJson(const ScopedQuietCpu* quiet) {
+  nlohmann::ordered_json out = {{"cpu", nullptr}, {"cpu_probe_ms", nullptr}};
+  if (quiet == nullptr) return out;
+  out["cpu"] = quiet->cpu();
+  for (const CpuProbe& p : quiet->probes()) out["cpu_probe_ms"][std::to_string(p.cpu)] = p.ms;
+  return out;
 }
 
 }  // namespace kdtree

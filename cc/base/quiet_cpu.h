@@ -25,6 +25,8 @@
 
 #include <vector>
 
+#include "nlohmann/json.hpp"
+
 namespace kdtree {
 
 struct CpuProbe {
@@ -57,6 +59,11 @@ class ScopedQuietCpu {
   bool restore_ = false;
   std::vector<unsigned char> saved_;  // the thread's cpu_set_t before
 };
+
+// What a record keeps of it (kdrt's and render_bench's "timing"): {"cpu": the
+// CPU pinned to (-1: pinning failed), "cpu_probe_ms": {CPU number: probe}},
+// each null without `quiet` (timing with more threads) or without probes.
+nlohmann::ordered_json QuietCpuJson(const ScopedQuietCpu* quiet);
 
 }  // namespace kdtree
 

@@ -2,6 +2,7 @@
 
 #include <sched.h>
 
+#include <string>
 #include <vector>
 
 #include "gtest/gtest.h"
@@ -57,6 +58,16 @@ TEST(QuietCpuTest, PinsToTheQuietestAndRestores) {
     EXPECT_EQ(pin.probes().size(), before.size());
   }
   EXPECT_EQ(AllowedCpus(), before);
+}
+
+TEST(QuietCpuTest, JsonOfThePin) {
+  EXPECT_EQ(QuietCpuJson(nullptr).dump(), R"({"cpu":null,"cpu_probe_ms":null})");
+  if (!CanPin()) GTEST_SKIP() << "sched_setaffinity is not allowed here";
+  const ScopedQuietCpu pin;
+  const nlohmann::ordered_json j = QuietCpuJson(&pin);
+  EXPECT_EQ(j["cpu"], pin.cpu());
+  ASSERT_EQ(j["cpu_probe_ms"].size(), pin.probes().size());
+  for (const CpuProbe& p : pin.probes()) EXPECT_EQ(j["cpu_probe_ms"][std::to_string(p.cpu)], p.ms);
 }
 
 TEST(QuietCpuTest, OneAllowedCpuIsTheOneChosen) {

@@ -352,12 +352,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
         e.rays = r->total_rays();
       }
     }
-    Json cpu = nullptr, probes = Json::object();
-    if (quiet) {
-      cpu = quiet->cpu();
-      for (const CpuProbe& p : quiet->probes()) probes[std::to_string(p.cpu)] = p.ms;
-      quiet.reset();
-    }
+    const Json cpu = QuietCpuJson(quiet ? &*quiet : nullptr);
+    quiet.reset();
     ctx.lock->Release();
     const double lock_wait_s = ctx.lock->waited_seconds() - waited_before;
     Json tracers = bench::TracerTimes(entries);
@@ -410,8 +406,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                      {"lock_wait_s", lock_wait_s},
                      // With one thread, the CPU the rounds ran on and each
                      // CPU's probe (quiet_cpu.h, ms); null otherwise.
-                     {"cpu", cpu},
-                     {"cpu_probe_ms", probes.empty() ? Json(nullptr) : probes}};
+                     {"cpu", cpu["cpu"]},
+                     {"cpu_probe_ms", cpu["cpu_probe_ms"]}};
     rec["provenance"] = ctx.provenance;
     const std::string line = JsonLine(rec);
     if (!bench::WriteLine(stdout, line) || !bench::WriteLine(out, line)) {

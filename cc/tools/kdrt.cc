@@ -319,12 +319,7 @@ absl::Status Run() {
   std::optional<ScopedQuietCpu> quiet;
   if (f.threads == 1) quiet.emplace();
   if (!(st = TimeRounds(*soup, f.view, f.repeats, f.budget_s, &lanes, step)).ok()) return st;
-  Json cpu = Json::object();  // the CPU of the rounds and each CPU's probe (ms), or nulls
-  cpu["cpu"] = quiet ? Json(quiet->cpu()) : Json();
-  cpu["cpu_probe_ms"] = quiet ? Json::object() : Json();
-  for (const CpuProbe& p : quiet ? quiet->probes() : std::vector<CpuProbe>()) {
-    cpu["cpu_probe_ms"][std::to_string(p.cpu)] = p.ms;
-  }
+  const Json cpu = QuietCpuJson(quiet ? &*quiet : nullptr);
   quiet.reset();
   progress.Phase("timed renders");
   lane_set->robust.reset();  // before the timed builds, as they free the other tracers
