@@ -37,6 +37,16 @@ def of(record):
     return prov if isinstance(prov, dict) else None
 
 
+def cpu_probe(record):
+    """The probe (ms) of the CPU a record's single-thread timed rounds ran on
+    (kdrt and render_bench since 2026-12-06, "timing": cpu, cpu_probe_ms;
+    cc/base/quiet_cpu.h): higher is a busier machine. None without it."""
+    timing = record.get("timing") if isinstance(record, dict) else None
+    if not isinstance(timing, dict):
+        return None
+    return (timing.get("cpu_probe_ms") or {}).get(str(timing.get("cpu")))
+
+
 def code_key(prov):
     """What must be equal for two records' numbers to come from one code:
     the source tree (or, without it, the commit and dirtiness) and the

@@ -88,12 +88,7 @@ def _quiet_cpu(records):
     """The single-thread renders pinned to the quieter CPU (kdrt since
     2026-12-06, cc/base/quiet_cpu.h) and the probe of the CPU they ran on:
     how busy the machine was. '' when no record has it."""
-    probes = []
-    for r in records:
-        t = r.get("timing") if isinstance(r.get("timing"), dict) else {}
-        ms = (t.get("cpu_probe_ms") or {}).get(str(t.get("cpu")))
-        if ms is not None:
-            probes.append(ms)
+    probes = [ms for ms in map(pv.cpu_probe, records) if ms is not None]
     if not probes:
         return ""
     return ("renders on the quieter CPU in %d of %d runs (its probe %.1f ms median, %.1f to "

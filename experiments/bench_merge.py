@@ -21,7 +21,12 @@ number of records pooled. Derived fields it does not recompute
 ratio_trace_only) are dropped from pooled records rather than left stale.
 A group of one record is returned as it is, with "processes": 1."""
 import copy
+import os
 import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from analysis import provenance  # noqa: E402  (cpu_probe: the record's CPU probe)
 
 DROPPED = ("first_over_this_paired", "trace_s_median", "mrays_per_s_median")
 
@@ -112,12 +117,8 @@ def probe_line(records):
     timing.cpu, render_bench since f8dfb55), and how many ran slow; '' when no
     record has it. Give it the records before merge_processes, which keeps
     the first process's timing only."""
-    probes = []
-    for r in records:
-        t = r.get("timing") or {}
-        ms = (t.get("cpu_probe_ms") or {}).get(str(t.get("cpu")))
-        if r.get("threads") == 1 and ms is not None:
-            probes.append(ms)
+    probes = [provenance.cpu_probe(r) for r in records if r.get("threads") == 1]
+    probes = [ms for ms in probes if ms is not None]
     if not probes:
         return ""
     fastest = min(probes)

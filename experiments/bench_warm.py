@@ -13,19 +13,22 @@ median [lowest..highest] over the rounds; a round where one of the four
 times is not positive (within the noise of the subtraction) is left out."""
 import statistics
 
-# Per kind of tracing: our mode, Embree's, and the replay of that mode.
-MODES = (("single", "kd_origin", "embree", "replay"),
-         ("packets", "kd_packet_origin", "embree_packet", "replay_packet"))
+import bench_tables
+
+# Per kind of tracing: our mode and Embree's.
+MODES = (("single", "kd_origin", "embree"), ("packets", "kd_packet_origin", "embree_packet"))
 PASSES = (("primary_s_runs", "camera"), ("secondary_s_runs", "shadow"))
 
 
-def first_and_second(tracers, name, replay, key):
-    """Per round, (first trace, second trace) of tracer `name` on pass `key`;
-    None without NAME_twice or the replay."""
-    once, twice, rep = (tracers.get(n, {}).get(key) for n in (name, name + "_twice", replay))
-    if not once or not twice or not rep:
+def first_and_second(tracers, name, key):
+    """Per round, (first trace, second trace) of tracer `name` on pass `key`:
+    the first is its tracing time alone (bench_tables.tracing_runs: the pass
+    less its mode's replay); None without NAME_twice or the replay."""
+    first = bench_tables.tracing_runs(key)(tracers, name)
+    once, twice = (tracers.get(n, {}).get(key) for n in (name, name + "_twice"))
+    if not first or not once or not twice:
         return None
-    return [(o - r, t - o) for o, t, r in zip(once, twice, rep)]
+    return [(f, t - o) for f, o, t in zip(first, once, twice)]
 
 
 def cell(values):
@@ -45,10 +48,10 @@ def warm_summary(records):
                         key=lambda r: (r["n_tri"], r["scene"]))
     for r in one_thread:
         t = r["tracers"]
-        for kind, ours, theirs, replay in MODES:
+        for kind, ours, theirs in MODES:
             for key, pass_name in PASSES:
-                a = first_and_second(t, ours, replay, key)
-                b = first_and_second(t, theirs, replay, key)
+                a = first_and_second(t, ours, key)
+                b = first_and_second(t, theirs, key)
                 if a is None or b is None:
                     continue
                 rounds = [(o, e) for o, e in zip(a, b) if min(o + e) > 0]
