@@ -113,6 +113,31 @@
 //      3.7 % shorter on four scenes and 0.6 % longer on rungholt-1m, within
 //      twice the control's spread; with the first packet of a pushed leaf
 //      prefetched too, 1-3 % longer.
+//    - ropes for shadow rays (Havran's thesis, 2000; Popov et al., EG 2007):
+//      a leaf record of 64 bytes (its box, six ropes pushed down as far as
+//      each face allows, its first packet), the walk from the light's leaf
+//      (kept between rays) back to the origin, each exit face found from the
+//      leaf's box and every decision taken only clear of rounding (else the
+//      stack traversal; under 0.1 % of rays). 0 mismatches against `kd` and
+//      brute force (render_bench, 300 rays a scene; all presets on the test
+//      scenes). It visits the same leaves (bunny: 5.8 a ray) with 15.4
+//      descent steps instead of 27.2 inner steps, yet the shadow pass (with
+//      the renderer's own work) took 1.27-1.58 times as long (bunny, city2,
+//      lost-empire; one process, 5 paired rounds): each hop waits on the leaf record, the exit face's
+//      computation and the rope's node, where a predicted inner step lets
+//      the next node's load start at once;
+//    - the path to the light's leaf kept between shadow rays and replayed
+//      in vectors (every plane's crossing at once, the node-by-node
+//      decisions checked against the path, the descent's pushes written;
+//      the same nodes and intervals): the light sits in empty space, so the
+//      path is short (bunny 7.5 of a ray's 29 inner steps, city2 6.2 of
+//      18.9), and the shadow pass took 1.05-1.10 times as long on bunny and
+//      city2, 0.99-1.07 on lost-empire (10.4 of 19.9 replayed; one process,
+//      5 paired rounds). Front to back, the steps before a shadow ray's
+//      first leaf are 9.8-17.3 of 13.1-29.4, and 9.4-16.3 of them are the
+//      previous ray's (bunny, city2, lost-empire, teapots, stk-candela-city,
+//      courtyard-1m); replaying those would have to beat both the replay's
+//      cost above and from-end order's 0-11 %.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
