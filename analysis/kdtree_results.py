@@ -114,6 +114,8 @@ FIELDS = {
     # rounds of Embree T_R / kd-tree T_R (perf kd over Embree).
     "embree_T_B": "embree.T_B", "embree_T_R": "embree.T_R",
     "embree_T_B_runs": "embree.T_B_runs", "embree_T_R_runs": "embree.T_R_runs",
+    # Bytes Embree's build left allocated (its BVH; since 2026-12-06).
+    "embree_bvh_bytes": "embree.bvh_bytes",
     "embree_ratio": "embree.paired_ratio",
     "embree_ratio_runs": "embree.paired_ratio_runs",
     "embree_perf": "embree.perf_krays",

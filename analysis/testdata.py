@@ -163,7 +163,7 @@ def embree(t_r=0.2, ratios=None, t_b=0.1, **over):
     (paired_ratio_runs: Embree T_R / kd T_R per round; default one round)."""
     ratios = [1.0] if ratios is None else list(ratios)
     emb = {"quality": "medium", "timed": True, "T_B": t_b, "T_B_runs": [t_b] * len(ratios),
-           "T_B_warmup": t_b, "T_R": t_r, "T_R_runs": [t_r] * len(ratios),
+           "T_B_warmup": t_b, "bvh_bytes": 64000, "T_R": t_r, "T_R_runs": [t_r] * len(ratios),
            "T_R_warmup": t_r, "perf_krays": 640.0 / t_r,
            "all_rays_per_s": 940000 / t_r, "P_hit": 300, "P_miss": 340,
            "S_hit": 100, "S_miss": 200,

@@ -13,7 +13,10 @@ node array (bunny, sah-packet: 122 bytes a triangle then, 76 after): run
 this on one reproduction's records (make_all refuses records of mixed
 source trees). Per preset, over the
 scenes with a record of it: the median, lowest and highest tree_bytes /
-N_tri, and the median of N_TP / N_tri.
+N_tri, and the median of N_TP / N_tri. Beside them, Embree's BVH on the same
+scenes (the embree.bvh_bytes of the sah-packet records that have it: what
+Embree's build leaves allocated, by its memory monitor), the median and range
+of its bytes per triangle and of ours over its, scene by scene.
 
 Output: macros only (TreeBytes*), for the report's paragraph on memory.
 """
@@ -31,7 +34,9 @@ TARGET = 64  # bytes a triangle (issue 23)
 
 MACROS = ["TreeBytesTarget", "TreeBytesFastScenes", "TreeBytesFastMedian", "TreeBytesFastMin",
           "TreeBytesFastMax", "TreeBytesFastAtMostTarget", "TreeRefsFastMedian",
-          "TreeBytesBinnedMedian", "TreeBytesReportMedian"]
+          "TreeBytesBinnedMedian", "TreeBytesReportMedian", "TreeBytesEmbreeScenes",
+          "TreeBytesEmbreeMedian", "TreeBytesEmbreeMin", "TreeBytesEmbreeMax",
+          "TreeBytesOverEmbreeMedian", "TreeBytesOverEmbreeMin", "TreeBytesOverEmbreeMax"]
 
 
 def per_triangle(df, preset, column):
@@ -54,6 +59,14 @@ def macros(df):
     refs = list(per_triangle(df, FAST, "N_TP").values())
     binned = list(per_triangle(df, BINNED, "tree_bytes").values())
     report = list(per_triangle(df, REPORT, "tree_bytes").values())
+    ours = per_triangle(df, FAST, "tree_bytes")
+    embree = per_triangle(df, FAST, "embree_bvh_bytes")
+    over = [ours[s] / embree[s] for s in embree if s in ours and embree[s] > 0]
+    embree = list(embree.values())
+
+    def ratio(values, pick):
+        return ("%.1f" % pick(values) if values else latex.DASH, True)
+
     return {
         "TreeBytesTarget": (str(TARGET), False),
         "TreeBytesFastScenes": (str(len(fast)), False),
@@ -64,6 +77,13 @@ def macros(df):
         "TreeRefsFastMedian": ("%.2f" % statistics.median(refs) if refs else latex.DASH, True),
         "TreeBytesBinnedMedian": fmt(binned, statistics.median),
         "TreeBytesReportMedian": fmt(report, statistics.median),
+        "TreeBytesEmbreeScenes": (str(len(embree)), False),
+        "TreeBytesEmbreeMedian": fmt(embree, statistics.median),
+        "TreeBytesEmbreeMin": fmt(embree, min),
+        "TreeBytesEmbreeMax": fmt(embree, max),
+        "TreeBytesOverEmbreeMedian": ratio(over, statistics.median),
+        "TreeBytesOverEmbreeMin": ratio(over, min),
+        "TreeBytesOverEmbreeMax": ratio(over, max),
     }
 
 

@@ -13,8 +13,10 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
 
     def test_bytes_and_references_per_triangle(self):
         # n_tri 1000 (alpha), 2000 (beta), 4000 (gamma).
-        self.append("alpha", "sah-packet", n_tri=1000, tree_bytes=60000, N_TP=1500)
-        self.append("beta", "sah-packet", n_tri=2000, tree_bytes=160000, N_TP=4000)
+        self.append("alpha", "sah-packet", n_tri=1000, tree_bytes=60000, N_TP=1500,
+                    embree=testdata.embree(bvh_bytes=30000))
+        self.append("beta", "sah-packet", n_tri=2000, tree_bytes=160000, N_TP=4000,
+                    embree=testdata.embree(bvh_bytes=100000))
         self.append("gamma", "sah-packet", n_tri=4000, tree_bytes=256000, N_TP=7200)
         self.append("alpha", "sah-packet-binned", n_tri=1000, tree_bytes=70000)
         macros = tree_memory.generate(self.ctx)
@@ -28,6 +30,15 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
         # The fixture's clipping-pruning: tree_bytes 4000 over n_tri 1000.
         self.assertEqual(macros["TreeBytesReportMedian"][0], "4")
         self.assertEqual(macros["TreeBytesTarget"][0], "64")
+        # Embree's BVH where the record has it (gamma's fixture has none):
+        # 30 and 50 bytes a triangle; ours over its 2.0 and 1.6.
+        self.assertEqual(macros["TreeBytesEmbreeScenes"][0], "2")
+        self.assertEqual(macros["TreeBytesEmbreeMedian"][0], "40")
+        self.assertEqual(macros["TreeBytesEmbreeMin"][0], "30")
+        self.assertEqual(macros["TreeBytesEmbreeMax"][0], "50")
+        self.assertEqual(macros["TreeBytesOverEmbreeMedian"][0], "1.8")
+        self.assertEqual(macros["TreeBytesOverEmbreeMin"][0], "1.6")
+        self.assertEqual(macros["TreeBytesOverEmbreeMax"][0], "2.0")
         self.assertEqual(set(macros), set(tree_memory.MACROS))
 
     def test_no_records_of_a_preset_give_dashes(self):
@@ -35,6 +46,8 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
         self.assertEqual(macros["TreeBytesFastScenes"][0], "0")
         self.assertEqual(macros["TreeBytesFastMedian"][0], "---")
         self.assertEqual(macros["TreeRefsFastMedian"][0], "---")
+        self.assertEqual(macros["TreeBytesEmbreeScenes"][0], "0")
+        self.assertEqual(macros["TreeBytesOverEmbreeMedian"][0], "---")
 
 
 if __name__ == "__main__":

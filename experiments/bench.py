@@ -167,6 +167,9 @@ def main(argv=None):
                            render_out, *allow)
         passes = summarise(render_records, bench_tables.passes_summary, render_out, *allow)
         packets = summarise(render_records, bench_tables.packets_summary, render_out, *allow)
+        # Records before 2026-12-06 have no Embree bytes: no table then.
+        memory = (summarise(render_records, bench_tables.memory_summary, render_out, *allow)
+                  if bench_tables.memory_summary(render_records) else "")
         warm = summarise(render_records, bench_warm.warm_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
@@ -185,6 +188,9 @@ def main(argv=None):
     print(passes)
     print("\n## The packet kernel's work (render_bench's packet_counts, one render)\n")
     print(packets)
+    if memory:
+        print("\n## Memory: the tree against Embree's BVH (render_bench, bytes per triangle)\n")
+        print(memory)
     if any(n.endswith("_twice") for r in render_records for n in r.get("tracers", {})):
         print("\n## First and second traces (render_bench --twice, one thread, paired per "
               "round)\n")

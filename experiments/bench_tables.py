@@ -393,3 +393,22 @@ def packets_summary(records):
                                        p["leaf_steps"], p["triangle_steps"], lanes["inner"],
                                        lanes["triangle"], ray["N_TR"], ray["N_IT"]))
     return "\n".join(out)
+
+
+def memory_summary(records):
+    """Each scene's tree against Embree's BVH, in bytes per triangle
+    (render_bench's tree_bytes, its nodes and leaf packets, and
+    embree_bvh_bytes, what Embree's build left allocated by its memory
+    monitor; records since 2026-12-06). One row per scene and preset with
+    one thread; records without Embree's bytes are left out."""
+    out = ["| scene | triangles | preset | tree, bytes / triangle | Embree's BVH, bytes / triangle "
+           "| tree / Embree's |",
+           "|---|---|---|---|---|---|"]
+    for r in one_thread_by_size(records):
+        ours, theirs = r.get("tree_bytes"), r.get("embree_bvh_bytes")
+        if not ours or not theirs:
+            continue
+        n = r["n_tri"]
+        out.append("| %s | %s | %s | %.0f | %.0f | %.2f |" % (
+            r["scene"], format(n, ","), r["preset"], ours / n, theirs / n, ours / theirs))
+    return "\n".join(out) if len(out) > 2 else ""

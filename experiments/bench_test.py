@@ -202,6 +202,15 @@ class BenchTest(unittest.TestCase):
         del r["tracers"]["replay"], r["tracers"]["replay_packet"]
         self.assertNotIn("| s |", bench_tables.passes_summary([r]))
 
+    def test_memory_summary_gives_bytes_per_triangle(self):
+        one = {"scene": "s", "n_tri": 1000, "preset": "sah-packet", "threads": 1,
+               "tree_bytes": 120000, "embree_bvh_bytes": 60000}
+        older = dict(one, scene="old", embree_bvh_bytes=None)
+        text = bench_tables.memory_summary([one, dict(one, threads=2), older])
+        self.assertIn("| s | 1,000 | sah-packet | 120 | 60 | 2.00 |", text)
+        self.assertEqual(len(text.splitlines()), 3)  # the header, the rule, one row
+        self.assertEqual(bench_tables.memory_summary([older]), "")
+
     def test_packets_summary_gives_steps_per_packet_and_lanes_per_step(self):
         def counts(packets, rays):
             return {"rays": rays, "packets": packets,

@@ -103,7 +103,7 @@ check([r["threads"] for r in render] == [1, 2], "one render record per thread co
 for r in render:
     for k in ["bench", "scene", "n_tri", "preset", "threads", "tile", "repeats", "rays", "primary",
               "shadow", "ao", "camera_hits", "camera_triangles", "shadow_occluded",
-              "leaf_layout_bytes", "tracers",
+              "leaf_layout_bytes", "tree_bytes", "embree_bvh_bytes", "tracers",
               "ratio_kd_over_embree", "ratio_kd_over_embree_packet", "ratio_trace_only",
               "embree_native_ray16", "packet_counts", "validation", "timing", "provenance"]:
         check(k in r, "render record has no " + k)
@@ -113,6 +113,10 @@ for r in render:
     check(0 < r["camera_triangles"] <= min(r["n_tri"], r["camera_hits"]),
           "render: camera triangles")
     check(0 <= r["shadow_occluded"] <= r["shadow"], "render: occluded shadow rays")
+    # Memory: the tree is its nodes and its leaf packets; Embree's BVH some
+    # bytes a triangle.
+    check(r["tree_bytes"] > r["leaf_layout_bytes"] > 0, "render: tree bytes")
+    check(r["embree_bvh_bytes"] > 0, "render: Embree's bytes")
     # The packet variant's counting render: primary rays (closest hit) and
     # shadow rays (any hit), each lane counting as its single ray.
     counts = r["packet_counts"]

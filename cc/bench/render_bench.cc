@@ -387,6 +387,11 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 // The leaf packets' bytes (before 4c5d23d, also a second
                 // node array of 8 bytes a node).
                 {"leaf_layout_bytes", LeafLayoutBytes(*tree)},
+                // The whole tree (its nodes too) and Embree's BVH (its
+                // memory monitor, embree_tracer.h bvh_bytes), null without
+                // Embree.
+                {"tree_bytes", tree->nodes.size() * sizeof(KdNode) + LeafLayoutBytes(*tree)},
+                {"embree_bvh_bytes", embrees.empty() ? Json() : Json(embrees[0]->bvh_bytes())},
                 {"tracers", std::move(tracers)},
                 {"ratio_kd_over_embree", std::move(ratios)},
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},

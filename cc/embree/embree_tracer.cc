@@ -21,6 +21,14 @@ void OnError(void* user, RTCError code, const char* str) {
   if (last->empty()) *last = absl::StrCat("Embree error ", static_cast<int>(code), ": ", str ? str : "");
 }
 
+// The device's memory monitor: bytes allocated (> 0) or freed (< 0), each
+// block once (before an allocation, after a free); never refuses one.
+bool OnMemory(void* user, ssize_t bytes, bool /*post*/) {
+  static_cast<std::atomic<int64_t>*>(user)->fetch_add(static_cast<int64_t>(bytes),
+                                                      std::memory_order_relaxed);
+  return true;
+}
+
 RTCBuildQuality ToRtc(EmbreeQuality q) {
   switch (q) {
     case EmbreeQuality::kLow: return RTC_BUILD_QUALITY_LOW;
@@ -81,6 +89,7 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Triangl
   }
   std::string error;
   rtcSetDeviceErrorFunction(t->device_, OnError, &error);
+  rtcSetDeviceMemoryMonitorFunction(t->device_, OnMemory, &t->monitored_);
   t->native_ray16_ =
       rtcGetDeviceProperty(t->device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
 
@@ -108,9 +117,11 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Triangl
   rtcAttachGeometry(t->scene_, geom);
   rtcReleaseGeometry(geom);
 
+  const int64_t before = t->monitored_.load();
   const auto start = std::chrono::steady_clock::now();
   rtcCommitScene(t->scene_);
   t->build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  t->bvh_bytes_ = t->monitored_.load() - before;
   rtcSetDeviceErrorFunction(t->device_, nullptr, nullptr);
   if (!error.empty()) return absl::InternalError(error);
   return t;

@@ -10,13 +10,17 @@
 // = (1 - u - v) a + u b + v c). Embree reports hits with tnear <= t <= tfar.
 //
 // Build time is the time of rtcCommitScene only (device, scene and buffer
-// creation excluded). `threads` is passed to rtcNewDevice ("threads=1" for
+// creation excluded); its memory (bvh_bytes) what Embree's memory monitor
+// (rtcSetDeviceMemoryMonitorFunction) counts as held after it and not
+// before: the BVH and its leaves, without the vertex and index buffers. `threads` is passed to rtcNewDevice ("threads=1" for
 // the single-thread comparison), which also bounds Embree's build.
 #ifndef KDTREE_CC_EMBREE_EMBREE_TRACER_H_
 #define KDTREE_CC_EMBREE_EMBREE_TRACER_H_
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -74,12 +78,19 @@ class EmbreeTracer : public Tracer {
 
   // Wall time of rtcCommitScene.
   double build_seconds() const { return build_seconds_; }
+  // Bytes rtcCommitScene left allocated (its net count by the device's
+  // memory monitor): the acceleration structure Embree traverses.
+  int64_t bvh_bytes() const { return bvh_bytes_; }
 
  private:
   EmbreeTracer() = default;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   double build_seconds_ = 0;
+  int64_t bvh_bytes_ = 0;
+  // What the memory monitor has counted: allocations less frees, from every
+  // thread of the device.
+  std::atomic<int64_t> monitored_{0};
   bool native_ray16_ = false;
 };
 

@@ -127,6 +127,24 @@ TEST(EmbreeTracer, PacketsAgreeWithSingleRays) {
   EXPECT_LE(differ, 5);
 }
 
+// The BVH's bytes: some per triangle (a leaf holds its triangles' vertices),
+// far fewer than a kilobyte, and more for more triangles.
+TEST(EmbreeTracer, CountsItsBvhBytes) {
+  int64_t last = 0;
+  for (const int levels : {3, 5}) {
+    const TriangleSoup soup = testing::BumpySphere(levels, 7);
+    absl::StatusOr<std::unique_ptr<EmbreeTracer>> embree =
+        EmbreeTracer::Create(soup, EmbreeOptions());
+    ASSERT_TRUE(embree.ok()) << embree.status();
+    const int64_t bytes = (*embree)->bvh_bytes();
+    const int64_t n = static_cast<int64_t>(soup.size());
+    EXPECT_GE(bytes, 16 * n) << soup.size() << " triangles";
+    EXPECT_LE(bytes, 1024 * n) << soup.size() << " triangles";
+    EXPECT_GT(bytes, last);
+    last = bytes;
+  }
+}
+
 TEST(EmbreeTracer, QualityNames) {
   EXPECT_EQ(*ParseEmbreeQuality("HIGH"), EmbreeQuality::kHigh);
   EXPECT_EQ(*ParseEmbreeQuality("low"), EmbreeQuality::kLow);

@@ -44,6 +44,7 @@ Json EmbreeJson(EmbreeQuality quality, const TimedBuilds& b, const Json& disagre
   Json e = {{"quality", EmbreeQualityName(quality)}, {"timed", el != nullptr},
             {"T_B", el ? Json(Median(b.embree_runs)) : Json()}, {"T_B_runs", b.embree_runs},
             {"T_B_warmup", b.embree_warmup}};
+  if (b.embree != nullptr) e["bvh_bytes"] = b.embree->bvh_bytes();
   if (el != nullptr) {
     AddRenderTimes(*el, pixels, &e);
     const RenderResult& er = el->last;

@@ -113,6 +113,7 @@ check(lit["embree"]["paired_ratio_runs"] == [e / k for e, k in
 check(len(lit["embree"]["paired_ratio_runs"]) == 2, "two rounds, the warm-up apart")
 check(lit["perf_ratio_kd_over_embree"] == lit["embree"]["paired_ratio"], "the paired median")
 check(lit["T_B_warmup"] > 0 and lit["embree"]["T_R_warmup"] > 0, "warm-ups recorded")
+check(lit["embree"]["bvh_bytes"] > 16 * lit["n_tri"], "Embree's BVH bytes recorded")
 prov = lit["provenance"]
 check(prov["timing_lock"].endswith("timing.lock") and prov["timed_beside"] == 0, "timed alone")
 check(prov["cores"] >= 1 and prov["compilation_mode"] in ("opt", "fastbuild", "dbg"), "build")
