@@ -12,8 +12,9 @@
 // Build time is the time of rtcCommitScene only (device, scene and buffer
 // creation excluded); its memory (bvh_bytes) what Embree's memory monitor
 // (rtcSetDeviceMemoryMonitorFunction) counts as held after it and not
-// before: the BVH and its leaves, without the vertex and index buffers. `threads` is passed to rtcNewDevice ("threads=1" for
-// the single-thread comparison), which also bounds Embree's build.
+// before: the BVH and its leaves, without the vertex and index buffers.
+// `threads` is passed to rtcNewDevice ("threads=1" for the single-thread
+// comparison), which also bounds Embree's build.
 #ifndef KDTREE_CC_EMBREE_EMBREE_TRACER_H_
 #define KDTREE_CC_EMBREE_EMBREE_TRACER_H_
 
