@@ -118,14 +118,14 @@
 //      each face allows, its first packet), the walk from the light's leaf
 //      (kept between rays) back to the origin, each exit face found from the
 //      leaf's box and every decision taken only clear of rounding (else the
-//      stack traversal; under 0.1 % of rays). 0 mismatches against `kd` and
-//      brute force (render_bench, 300 rays a scene; all presets on the test
-//      scenes). It visits the same leaves (bunny: 5.8 a ray) with 15.4
-//      descent steps instead of 27.2 inner steps, yet the shadow pass (with
-//      the renderer's own work) took 1.27-1.58 times as long (bunny, city2,
-//      lost-empire; one process, 5 paired rounds): each hop waits on the leaf record, the exit face's
-//      computation and the rope's node, where a predicted inner step lets
-//      the next node's load start at once;
+//      stack traversal: 0.01 % of bunny's shadow rays). 0 mismatches against
+//      `kd` and brute force (render_bench, 300 rays a scene; all presets on
+//      the test scenes). It visits the same leaves (bunny: 5.8 a ray) with
+//      15.4 descent steps instead of 27.2 inner steps, yet the shadow pass
+//      (with the renderer's own work) took 1.27-1.58 times as long (bunny,
+//      city2, lost-empire; one process, 5 paired rounds): each hop waits on
+//      the leaf record, the exit face's computation and the rope's node,
+//      where a predicted inner step lets the next node's load start at once;
 //    - the path to the light's leaf kept between shadow rays and replayed
 //      in vectors (every plane's crossing at once, the node-by-node
 //      decisions checked against the path, the descent's pushes written;
@@ -198,9 +198,9 @@ struct TraversalOptions {
   // larger child by triangle area first 0-3 % more. Front to back with the
   // relative tolerance too (2026-12-06, a second tree, 7 paired rounds):
   // shadow pass 1.00-1.09 times as long on hairball-small, hairball-1m
-  // (62 % of its shadow rays occluded), fforest, bunny, city2 and dragon. The renderer's secondary
-  // rays take it (KdTreeTracer::Occluded); the counting pass keeps the
-  // report's order.
+  // (62 % of its shadow rays occluded), fforest, bunny, city2 and dragon.
+  // The renderer's secondary rays take it (KdTreeTracer::Occluded); the
+  // counting pass keeps the report's order.
   bool from_end = false;
 };
 
