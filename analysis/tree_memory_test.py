@@ -40,6 +40,12 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
         self.assertEqual(macros["TreeBytesOverEmbreeMin"][0], "1.6")
         self.assertEqual(macros["TreeBytesOverEmbreeMax"][0], "2.0")
         self.assertEqual(set(macros), set(tree_memory.MACROS))
+        # The table: a row per sah-packet scene, Embree's bytes where present.
+        with open(self.ctx.path("tree_memory.tex")) as f:
+            text = f.read()
+        self.assertIn("alpha & 1,000 & 1.50 & 60 & 30 & 2.00", text)
+        self.assertIn("beta & 2,000 & 2.00 & 80 & 50 & 1.60", text)
+        self.assertIn("gamma & 4,000 & 1.80 & 64 & --- & ---", text)
 
     def test_no_records_of_a_preset_give_dashes(self):
         macros = tree_memory.generate(self.ctx)
@@ -48,6 +54,8 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
         self.assertEqual(macros["TreeRefsFastMedian"][0], "---")
         self.assertEqual(macros["TreeBytesEmbreeScenes"][0], "0")
         self.assertEqual(macros["TreeBytesOverEmbreeMedian"][0], "---")
+        with open(self.ctx.path("tree_memory.tex")) as f:
+            self.assertIn("no records of sah-packet", f.read())
 
 
 if __name__ == "__main__":
