@@ -53,18 +53,23 @@ def per_triangle(df, preset, column):
     return out
 
 
+def over_embree(ours, embree):
+    """{scene: our bytes over Embree's} where both are known."""
+    return {s: ours[s] / embree[s] for s in embree if s in ours and embree[s] > 0}
+
+
 def macros(df):
     def fmt(values, pick):
         return ("%.0f" % pick(values) if values else latex.DASH, True)
 
-    fast = list(per_triangle(df, FAST, "tree_bytes").values())
+    ours = per_triangle(df, FAST, "tree_bytes")
+    embree_by_scene = per_triangle(df, FAST, "embree_bvh_bytes")
+    fast = list(ours.values())
     refs = list(per_triangle(df, FAST, "N_TP").values())
     binned = list(per_triangle(df, BINNED, "tree_bytes").values())
     report = list(per_triangle(df, REPORT, "tree_bytes").values())
-    ours = per_triangle(df, FAST, "tree_bytes")
-    embree = per_triangle(df, FAST, "embree_bvh_bytes")
-    over = [ours[s] / embree[s] for s in embree if s in ours and embree[s] > 0]
-    embree = list(embree.values())
+    over = list(over_embree(ours, embree_by_scene).values())
+    embree = list(embree_by_scene.values())
 
     def ratio(values, pick):
         return ("%.1f" % pick(values) if values else latex.DASH, True)
@@ -98,13 +103,13 @@ def table(df):
     def cell(value, form):
         return form % value if value is not None else latex.DASH
 
+    over = over_embree(ours, embree)
     body = []
     for scene, bytes_ in ours.items():
-        theirs = embree.get(scene)
         n_tri = df.loc[(scene, FAST)]["n_tri"]
         body.append([latex.escape(scene), latex.fmt_int(int(n_tri)), cell(refs.get(scene), "%.2f"),
-                     "%.0f" % bytes_, cell(theirs, "%.0f"),
-                     cell(bytes_ / theirs if theirs else None, "%.2f")])
+                     "%.0f" % bytes_, cell(embree.get(scene), "%.0f"),
+                     cell(over.get(scene), "%.2f")])
     if not body:
         body = [["\\emph{no records of sah-packet}", "", "", "", "", ""]]
     header = ["Scene", "$N_{tri}$", "$N_{TP}/N_{tri}$", "ours", "Embree", "ours / Embree"]

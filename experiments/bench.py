@@ -168,8 +168,9 @@ def main(argv=None):
         passes = summarise(render_records, bench_tables.passes_summary, render_out, *allow)
         packets = summarise(render_records, bench_tables.packets_summary, render_out, *allow)
         # Records before 2026-12-06 have no Embree bytes: no table then.
-        memory = (summarise(render_records, bench_tables.memory_summary, render_out, *allow)
-                  if bench_tables.memory_summary(render_records) else "")
+        memory_table = bench_tables.memory_summary(render_records)
+        memory = (summarise(render_records, lambda _: memory_table, render_out, *allow)
+                  if memory_table else "")
         warm = summarise(render_records, bench_warm.warm_summary, render_out, *allow)
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)

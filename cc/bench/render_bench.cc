@@ -390,7 +390,7 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 // The whole tree (its nodes too) and Embree's BVH (its
                 // memory monitor, embree_tracer.h bvh_bytes), null without
                 // Embree.
-                {"tree_bytes", tree->nodes.size() * sizeof(KdNode) + LeafLayoutBytes(*tree)},
+                {"tree_bytes", TreeBytes(*tree)},
                 {"embree_bvh_bytes", embrees.empty() ? Json() : Json(embrees[0]->bvh_bytes())},
                 {"tracers", std::move(tracers)},
                 {"ratio_kd_over_embree", std::move(ratios)},

@@ -74,6 +74,12 @@ inline void PacketTriangle(const float* packet, int l, Vec3* a, Vec3* b, Vec3* c
 // Bytes held by the packets.
 inline size_t LeafLayoutBytes(const KdTree& tree) { return tree.leaf_soa.size() * sizeof(float); }
 
+// Bytes held by the finished tree: its nodes and its packets (TreeStats and
+// render_bench's records).
+inline size_t TreeBytes(const KdTree& tree) {
+  return tree.nodes.size() * sizeof(KdNode) + LeafLayoutBytes(tree);
+}
+
 }  // namespace kdtree
 
 #endif  // KDTREE_CC_KDTREE_LEAF_LAYOUT_H_

@@ -54,7 +54,7 @@ TreeStats ComputeStats(const KdTree& tree) {
   s.mem_report_mb = (8.0 * (s.inner + s.leaves) + 4.0 * (s.leaf_refs + s.leaves - s.empty_leaves) +
                      8.0 * tree.num_triangles()) /
                     (1024.0 * 1024.0);
-  s.tree_bytes = tree.nodes.size() * sizeof(KdNode) + LeafLayoutBytes(tree);
+  s.tree_bytes = TreeBytes(tree);
   s.build_peak_bytes = tree.counters.peak_build_bytes;
   return s;
 }
