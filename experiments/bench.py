@@ -15,10 +15,15 @@ alone under the machine-wide timing lock, after untimed warm-ups.
   experiments/bench.py --build_min_tris 1000000 --render_min_tris 50000
   experiments/bench.py --repo ../other-checkout   # scenes fetched there
   experiments/bench.py --skip_build --twice --out out/warm   # first and second traces
+  experiments/bench.py --skip_build --classes --out out/classes   # per class of ray
 
 With --twice, render_bench also times every tracer tracing each query twice
 in a row, and the summary adds how much of each tracer's time is first
-touches (experiments/bench_warm.py). With --processes N, each scene's
+touches (experiments/bench_warm.py). With --classes, render_bench also
+times the single-ray tracers on each class of the recorded rays alone
+(camera rays that reach no node, that hit nothing, that hit; shadow rays),
+and the summary adds where the time goes by class
+(experiments/bench_classes.py). With --processes N, each scene's
 render_bench runs N times (the scenes in turn, N passes), and the summary
 pools the rounds of a scene's processes (experiments/bench_merge.py): the
 same paired ratio moves between processes by more than between rounds.
@@ -45,6 +50,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_tables  # noqa: E402  (the Markdown tables)
 import bench_merge  # noqa: E402  (several processes' rounds pooled, --processes)
 import bench_warm  # noqa: E402  (the first and second traces, --twice)
+import bench_classes  # noqa: E402  (per class of ray, --classes)
 
 # The --config=opt binaries (bazel-bin follows the last build, which may be
 # a test build).
@@ -124,6 +130,8 @@ def main(argv=None):
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--twice", action="store_true",
                    help="render_bench --twice: every tracer also traces each query twice")
+    p.add_argument("--classes", action="store_true",
+                   help="render_bench --classes: each class of ray traced alone per tracer")
     p.add_argument("--processes", type=int, default=1,
                    help="render_bench processes per scene, their rounds pooled in the summary")
     p.add_argument("--skip_build", action="store_true")
@@ -155,7 +163,8 @@ def main(argv=None):
                          "--cache_dir", cache_dir, "--preset", a.render_preset,
                          "--threads", "1,2", "--repeats", str(a.repeats),
                          "--variants", a.render_variants,
-                         "--out", render_out] + (["--twice"] if a.twice else []))
+                         "--out", render_out] + (["--twice"] if a.twice else [])
+                        + (["--classes"] if a.classes else []))
     try:
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
         build = summarise(read(build_out), bench_tables.build_summary, build_out, *allow)
@@ -172,6 +181,9 @@ def main(argv=None):
         memory = (summarise(render_records, lambda _: memory_table, render_out, *allow)
                   if memory_table else "")
         warm = summarise(render_records, bench_warm.warm_summary, render_out, *allow)
+        classes_table = bench_classes.classes_summary(render_records)
+        classes = (summarise(render_records, lambda _: classes_table, render_out, *allow)
+                   if classes_table else "")
     except ProvenanceError as e:
         sys.exit("bench.py: %s" % e)
     print("## Build (build_bench)\n")
@@ -196,6 +208,10 @@ def main(argv=None):
         print("\n## First and second traces (render_bench --twice, one thread, paired per "
               "round)\n")
         print(warm)
+    if classes:
+        print("\n## Per class of ray, single rays traced alone (render_bench --classes, one "
+              "thread, paired per round)\n")
+        print(classes)
 
 
 if __name__ == "__main__":

@@ -15,10 +15,14 @@ code) and returns one record per group, in first-seen order: each tracer's
 per-round lists (every field ending in _runs) concatenated in process order,
 its medians and minimum recomputed from them, the ratios to Embree
 (ratio_kd_over_embree, ratio_kd_over_embree_packet) recomputed from the
-pooled rounds, the validation's mismatch counts summed, "processes" the
-number of records pooled. Derived fields it does not recompute
-(first_over_this_paired, trace_s_median, mrays_per_s_median,
-ratio_trace_only) are dropped from pooled records rather than left stale.
+pooled rounds, the validation's mismatch counts summed, the ray classes'
+per-round times (ray_classes, render_bench --classes) concatenated per class
+and tracer, "processes" the number of records pooled. Derived fields it
+does not recompute (first_over_this_paired, trace_s_median,
+mrays_per_s_median, ratio_trace_only, the ray classes' medians and ratios,
+which experiments/bench_classes.py computes from the runs) are dropped from
+pooled records rather than left stale; so are ray classes that not every
+record of the group has.
 A group of one record is returned as it is, with "processes": 1."""
 import copy
 import os
@@ -52,6 +56,23 @@ def _ratios(tracers, names, embree):
     return out
 
 
+def _pool_classes(group):
+    """The ray classes' ns_runs pooled per class and tracer; None unless
+    every record has them."""
+    tables = [(r.get("ray_classes") or {}).get("classes") for r in group]
+    if not all(tables):
+        return None
+    pooled = {}
+    for name, c in tables[0].items():
+        if not all(name in t for t in tables):
+            continue
+        tracers = [n for n in c["ns_runs"] if all(n in t[name]["ns_runs"] for t in tables)]
+        pooled[name] = {"rays": c["rays"],
+                        "ns_runs": {n: [x for t in tables for x in t[name]["ns_runs"][n]]
+                                    for n in tracers}}
+    return {"rounds": sum(r["ray_classes"].get("rounds", 0) for r in group), "classes": pooled}
+
+
 def _pool(group):
     merged = copy.deepcopy(group[0])
     names = [n for n in merged["tracers"] if all(n in r["tracers"] for r in group)]
@@ -79,6 +100,8 @@ def _pool(group):
         v["variants_vs_kd_mismatches"] = {
             n: sum(r["validation"]["variants_vs_kd_mismatches"].get(n, 0) for r in group)
             for n in v["variants_vs_kd_mismatches"]}
+    if "ray_classes" in merged:
+        merged["ray_classes"] = _pool_classes(group)
     merged["repeats"] = sum(r.get("repeats", 0) for r in group)
     merged["processes"] = len(group)
     return merged

@@ -52,6 +52,24 @@ class BenchMergeTest(unittest.TestCase):
                          "Each row pools the rounds of 2 render_bench processes "
                          "(experiments/bench_merge.py).")
 
+    def test_ray_classes_runs_pooled_and_their_summaries_dropped(self):
+        def with_classes(kd_ns, embree_ns):
+            r = record([1.0], [0.8])
+            r["ray_classes"] = {"rounds": len(kd_ns), "classes": {
+                "shadow": {"rays": 5, "ns_runs": {"kd_origin": kd_ns, "embree": embree_ns},
+                           "ns_per_ray": {"kd_origin": 0.0}, "embree_over": {}},
+                "ao": {"rays": 2, "ns_runs": {"kd_origin": [1.0], "embree": [1.0]}}}}
+            return r
+        a, b = with_classes([2.0, 3.0], [1.0, 1.5]), with_classes([4.0], [2.0])
+        del b["ray_classes"]["classes"]["ao"]
+        m = bench_merge.merge_processes([a, b])[0]["ray_classes"]
+        self.assertEqual(m["rounds"], 3)
+        self.assertEqual(m["classes"], {"shadow": {"rays": 5, "ns_runs": {
+            "kd_origin": [2.0, 3.0, 4.0], "embree": [1.0, 1.5, 2.0]}}})
+        # A process without classes: none pooled.
+        del b["ray_classes"]
+        self.assertIsNone(bench_merge.merge_processes([a, b])[0]["ray_classes"])
+
     def test_other_scenes_and_other_code_are_not_pooled(self):
         a = record([1.0], [0.8])
         records = [a, record([1.0], [0.8], scene="t"), record([1.0], [0.8], tree="b" * 40)]

@@ -52,10 +52,11 @@ printf 'KDTree {\n    traversalCost 30\n}\n' > kt30.env
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1 \
   --repeats=1 --warmup=0 --variants=kd_packet_origin --envs=kt30.env --env_packets \
   --embree=off --out=env.jsonl > /dev/null
-# Every tracer also tracing each query twice (--twice), with one thread only.
+# Every tracer also tracing each query twice (--twice), and the single-ray tracers per
+# class of ray (--classes), with one thread only.
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1,2 \
   --repeats=1 --warmup=0 --variants=kd_origin --embree=medium --embree_packets=false \
-  --embree_robust=false --twice --out=twice.jsonl > /dev/null
+  --embree_robust=false --twice --classes --out=twice.jsonl > /dev/null
 if "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --repeats=0 > /dev/null 2> err.txt; then
   echo "--repeats=0 accepted"; exit 1
 fi
@@ -174,6 +175,12 @@ twice = [json.loads(l) for l in open("twice.jsonl")]
 check([list(r["tracers"]) for r in twice] ==
       [["kd_origin", "embree", "kd_origin_twice", "embree_twice", "replay", "replay_packet"],
        ["kd_origin", "embree"]], "twice: each traced tracer again, with one thread")
+classes = twice[0]["ray_classes"]["classes"]
+check("shadow" in classes and all(list(c["ns_runs"]) == ["kd_origin", "embree"]
+                                  and list(c["embree_over"]) == ["kd_origin"]
+                                  for c in classes.values()),
+      "classes: the single-ray tracers, not the twice ones, paired with Embree's")
+check(twice[1]["ray_classes"] is None, "classes: one thread only")
 print("ok")
 PY
 grep -q "repeats" err.txt

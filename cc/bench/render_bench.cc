@@ -100,6 +100,7 @@
 #include "cc/base/timing_lock.h"
 #include "cc/bench/bench_record.h"
 #include "cc/bench/packet_counts.h"
+#include "cc/bench/ray_classes.h"
 #include "cc/bench/render_check.h"
 #include "cc/bench/render_times.h"
 #include "cc/bench/render_variants.h"
@@ -162,6 +163,11 @@ ABSL_FLAG(bool, twice, false,
           "tracing every query twice in a row, as NAME_twice (twice_tracer.h): the second "
           "trace's time, caches and branch predictors warm from the first, is NAME_twice's "
           "less NAME's.");
+ABSL_FLAG(bool, classes, false,
+          "With one thread, also time each single-ray tracer on each class of the recorded "
+          "rays, traced alone in a tight loop (ray_classes.h: camera rays that reach no node, "
+          "that hit nothing, that hit; shadow rays), paired per round with Embree's: where "
+          "the time goes by what the rays do (record: ray_classes).");
 ABSL_FLAG(std::string, out, "", "JSON-lines output file (appended; '' = stdout only).");
 
 namespace kdtree {
@@ -352,6 +358,19 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
         e.rays = r->total_rays();
       }
     }
+    // Per class of ray, the single-ray tracers alone (--classes).
+    Json ray_classes;
+    if (absl::GetFlag(FLAGS_classes) && threads == 1) {
+      std::vector<bench::RenderVariant> single;
+      for (size_t k = 0; k < n_traced; ++k) {
+        const Entry& e = entries[k];
+        if (!e.packets && dynamic_cast<const bench::TwiceTracer*>(e.tracer) == nullptr) {
+          single.push_back(e);
+        }
+      }
+      ray_classes = bench::TimeRayClasses(bench::ClassifyRays(recorded.rays, *tree), single,
+                                          "embree", warmup, repeats);
+    }
     const Json cpu = QuietCpuJson(quiet ? &*quiet : nullptr);
     quiet.reset();
     ctx.lock->Release();
@@ -397,7 +416,8 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},
                 {"ratio_trace_only", std::move(trace_only)},
                 {"embree_native_ray16", !embrees.empty() && embrees[0]->native_ray16()},
-                {"packet_counts", packet_counts}};
+                {"packet_counts", packet_counts},
+                {"ray_classes", std::move(ray_classes)}};
     rec["validation"] = {{"variants_vs_kd_mismatches", variant_json},
                          {"brute_force_checked", checked},
                          {"brute_force_mismatches", bf_bad},

@@ -1,0 +1,51 @@
+"""Where a single ray's time goes, by what the ray does (render_bench
+--classes, cc/bench/ray_classes.h): per scene and class of the recorded rays
+(camera rays that reach no node of the tree, camera rays that reach it and
+hit nothing, camera hits, shadow rays), our single rays and Embree's, each
+class traced alone in a tight loop, in the same rounds. Times are ns per
+ray, medians over the rounds; Embree's speed over ours is paired per round,
+median [lowest..highest]. A class's share of the rays says how much its
+ratio weighs in a render's. Traced alone, a class does not see the render's
+mix of caches and predictors, so these are a diagnosis; the targets are
+render_bench's rounds."""
+import statistics
+
+# Our single-ray variant, as the targets table reads it, then the fallback.
+OURS = ("kd_origin", "kd")
+THEIRS = "embree"
+
+
+def pooled(classes):
+    """A class table's per-round times, medians and Embree's paired ratios
+    recomputed from its ns_runs (bench_merge pools the runs of several
+    processes)."""
+    out = {}
+    for name, c in classes.items():
+        runs = c.get("ns_runs", {})
+        ours = next((n for n in OURS if n in runs), None)
+        if ours is None or THEIRS not in runs:
+            continue
+        ratios = [e / o for e, o in zip(runs[THEIRS], runs[ours])]
+        out[name] = {"rays": c["rays"], "ours": ours,
+                     "ours_ns": statistics.median(runs[ours]),
+                     "theirs_ns": statistics.median(runs[THEIRS]),
+                     "ratios": ratios}
+    return out
+
+
+def classes_summary(records):
+    """One row per one-thread record with ray classes, and class."""
+    out = ["| scene | triangles | class | rays | share | ours, ns / ray | Embree, ns / ray "
+           "| Embree's over ours |", "|---|---|---|---|---|---|---|---|"]
+    one_thread = sorted((r for r in records if r.get("threads") == 1 and r.get("ray_classes")),
+                        key=lambda r: (r["n_tri"], r["scene"]))
+    for r in one_thread:
+        table = pooled(r["ray_classes"]["classes"])
+        total = sum(c["rays"] for c in table.values())
+        for name, c in table.items():
+            q = c["ratios"]
+            out.append("| %s | %s | %s | %s | %.0f %% | %.1f | %.1f | %.2f [%.2f..%.2f] |" % (
+                r["scene"], format(r["n_tri"], ","), name, format(c["rays"], ","),
+                100.0 * c["rays"] / total, c["ours_ns"], c["theirs_ns"],
+                statistics.median(q), min(q), max(q)))
+    return "\n".join(out) if len(out) > 2 else ""
