@@ -33,12 +33,34 @@ def pooled(classes):
     return out
 
 
+def overview(tables):
+    """Per class over the scenes: the median share of the rays and the median
+    [lowest..highest] of the scenes' paired ratios."""
+    out = ["| class | scenes | share of the rays, median | Embree's over ours, median "
+           "of the scenes [lowest..highest] |", "|---|---|---|---|"]
+    names = []
+    for table in tables:
+        names += [n for n in table if n not in names]
+    for name in names:
+        rows = [(t[name], sum(c["rays"] for c in t.values())) for t in tables if name in t]
+        ratios = [statistics.median(c["ratios"]) for c, _ in rows]
+        share = statistics.median([100.0 * c["rays"] / total for c, total in rows])
+        out.append("| %s | %d | %.0f %% | %.2f [%.2f..%.2f] |" % (
+            name, len(rows), share, statistics.median(ratios), min(ratios), max(ratios)))
+    return out
+
+
 def classes_summary(records):
-    """One row per one-thread record with ray classes, and class."""
-    out = ["| scene | triangles | class | rays | share | ours, ns / ray | Embree, ns / ray "
-           "| Embree's over ours |", "|---|---|---|---|---|---|---|---|"]
+    """Per class, its median over the scenes; then one row per one-thread
+    record with ray classes, and class."""
     one_thread = sorted((r for r in records if r.get("threads") == 1 and r.get("ray_classes")),
                         key=lambda r: (r["n_tri"], r["scene"]))
+    tables = [pooled(r["ray_classes"]["classes"]) for r in one_thread]
+    if not any(tables):
+        return ""
+    out = overview([t for t in tables if t]) + [""]
+    out += ["| scene | triangles | class | rays | share | ours, ns / ray | Embree, ns / ray "
+            "| Embree's over ours |", "|---|---|---|---|---|---|---|---|"]
     for r in one_thread:
         table = pooled(r["ray_classes"]["classes"])
         total = sum(c["rays"] for c in table.values())
@@ -48,4 +70,4 @@ def classes_summary(records):
                 r["scene"], format(r["n_tri"], ","), name, format(c["rays"], ","),
                 100.0 * c["rays"] / total, c["ours_ns"], c["theirs_ns"],
                 statistics.median(q), min(q), max(q)))
-    return "\n".join(out) if len(out) > 2 else ""
+    return "\n".join(out)

@@ -17,8 +17,14 @@ class ClassesSummaryTest(unittest.TestCase):
             "shadow": {"rays": 100, "ns_runs": {"kd_origin": [100.0, 50.0],
                                                  "embree": [50.0, 50.0]}},
         }
-        table = bench_classes.classes_summary([record("bunny", 69666, classes)])
-        rows = table.splitlines()[2:]
+        table = bench_classes.classes_summary([record("bunny", 69666, classes),
+                                               record("city", 68497, classes)])
+        lines = table.splitlines()
+        # Over the scenes first: each class's median share and ratio.
+        self.assertEqual(lines[2], "| camera_no_node | 2 | 75 % | 1.12 [1.12..1.12] |")
+        self.assertEqual(lines[3], "| shadow | 2 | 25 % | 0.75 [0.75..0.75] |")
+        self.assertEqual(lines[4], "")
+        rows = [l for l in lines[7:] if l.startswith("| bunny")]
         self.assertEqual(len(rows), 2)
         # 10/8 and 10/10: median 1.125.
         self.assertIn("| bunny | 69,666 | camera_no_node | 300 | 75 % | 9.0 | 10.0 | "
@@ -30,7 +36,8 @@ class ClassesSummaryTest(unittest.TestCase):
                    "shadow": {"rays": 4, "ns_runs": {"kd": [2.0]}}}  # no Embree: left out
         records = [record("a", 10, classes), {"scene": "b", "n_tri": 5, "threads": 1},
                    record("c", 10, classes, threads=2)]
-        rows = bench_classes.classes_summary(records).splitlines()[2:]
+        rows = [l for l in bench_classes.classes_summary(records).splitlines()
+                if l.startswith("| a |")]
         self.assertEqual(len(rows), 1)
         self.assertIn("| a | 10 | camera_hit | 4 | 100 % | 2.0 | 1.0 | 0.50 [0.50..0.50] |",
                       rows[0])

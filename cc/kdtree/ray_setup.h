@@ -21,6 +21,25 @@
 // second, identical tree): the camera pass 3-8 % shorter on bunny, city2,
 // lost-empire, courtyard-1m and stk-candela-city (T_R 2-6 %), the shadow
 // pass 0-2.5 %; the same code on both trees 0.999-1.010.
+//
+// What the set-up costs now (render_bench, sah-packet, one process, 7 paired
+// rounds, the variant's code on a second, identical tree, each pass less its
+// replay; bunny, city2, lost-empire, teapots; 2026-12-06): a second,
+// independent SanitizeAndSetUpRay per ray made the camera pass 1.29-1.36
+// times as long and the shadow pass 1.06-1.15, about 14 ns a camera ray; six
+// dependent multiplications by one on the reciprocal (18 cycles more on its
+// chain, six instructions) 1.04-1.06 and 0.99-1.02 (the same code on both
+// trees: 1.00-1.01). Yet a camera ray that misses the root box, which pays
+// the set-up up to the box test and nothing else, costs us 7.5-7.9 ns and
+// Embree 9.6-10.3 on all 25 standard scenes (render_bench --classes), so the
+// set-up is not where single rays lose. Tried and not kept (the same A/B, six scenes):
+// the watertight frame's components by one byte shuffle of the vectors (a
+// table of PSHUFB controls indexed by the axes WatertightAxes' branches
+// choose) instead of the selects, the sign bytes in one store: camera pass
+// 1.01-1.03 (control 0.99-1.00); the sanitising, the set-up and the
+// root-box test inlined into the caller and the traversal out of line, so
+// that a ray that misses the box never enters its stack frame: 0.99-1.02
+// (control 0.99-1.01).
 #ifndef KDTREE_CC_KDTREE_RAY_SETUP_H_
 #define KDTREE_CC_KDTREE_RAY_SETUP_H_
 
