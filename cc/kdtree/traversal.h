@@ -145,6 +145,22 @@
 //      shorter on stk-candela-city, stk-cocoa-temple, city, city2 and
 //      lost-empire, 2.8 % longer on hairball-small (second tree, 7 paired
 //      rounds; control 0.989-1.007).
+//    - bounds on subtrees (as in Woop, Marmitt & Slusallek's B-KD trees,
+//      Graphics Hardware 2006): for inner nodes whose geometry (each leaf
+//      triangle's box clipped to its leaf's cell) fills a box of at most a
+//      given fraction of the cell's surface area, the ray's interval
+//      clipped to that box (the root box's padded clip), the subtree
+//      skipped when it is empty. 0 mismatches; slower at every fraction
+//      tried (render_bench, --variants kd against the boxes on a second
+//      tree, 5-7 paired rounds, bunny, city2, armadillo; at 0.5 also
+//      teapots, lost-empire, refined-elephant; 2026-12-06): at 0.2 (16-772
+//      nodes with a box) the shadow pass 1.05-1.08 times as long, camera
+//      1.03-1.04; at 0.5 (1.4-5 % of the nodes) 1.06-1.10 and 0.99-1.03;
+//      at 0.9 (17-27 %) 1.11-1.22 and 1.02-1.12. By class (render_bench
+//      --classes), the camera rays that cross the tree's box and hit
+//      nothing, which the boxes were for, took 1.00-1.13 times as long:
+//      the SAH's empty cuts leave the boxes little to cull, and the check
+//      at each node costs every inner step.
 #ifndef KDTREE_CC_KDTREE_TRAVERSAL_H_
 #define KDTREE_CC_KDTREE_TRAVERSAL_H_
 
