@@ -10,6 +10,8 @@ mix of caches and predictors, so these are a diagnosis; the targets are
 render_bench's rounds."""
 import statistics
 
+import bench_tables
+
 # Our single-ray variant, as the targets table reads it, then the fallback.
 OURS = ("kd_origin", "kd")
 THEIRS = "embree"
@@ -45,29 +47,26 @@ def overview(tables):
         rows = [(t[name], sum(c["rays"] for c in t.values())) for t in tables if name in t]
         ratios = [statistics.median(c["ratios"]) for c, _ in rows]
         share = statistics.median([100.0 * c["rays"] / total for c, total in rows])
-        out.append("| %s | %d | %.0f %% | %.2f [%.2f..%.2f] |" % (
-            name, len(rows), share, statistics.median(ratios), min(ratios), max(ratios)))
+        out.append("| %s | %d | %.0f %% | %s |" % (
+            name, len(rows), share, bench_tables.median_range(ratios)))
     return out
 
 
 def classes_summary(records):
     """Per class, its median over the scenes; then one row per one-thread
     record with ray classes, and class."""
-    one_thread = sorted((r for r in records if r.get("threads") == 1 and r.get("ray_classes")),
-                        key=lambda r: (r["n_tri"], r["scene"]))
+    one_thread = [r for r in bench_tables.one_thread_by_size(records) if r.get("ray_classes")]
     tables = [pooled(r["ray_classes"]["classes"]) for r in one_thread]
     if not any(tables):
         return ""
     out = overview([t for t in tables if t]) + [""]
     out += ["| scene | triangles | class | rays | share | ours, ns / ray | Embree, ns / ray "
             "| Embree's over ours |", "|---|---|---|---|---|---|---|---|"]
-    for r in one_thread:
-        table = pooled(r["ray_classes"]["classes"])
+    for r, table in zip(one_thread, tables):
         total = sum(c["rays"] for c in table.values())
         for name, c in table.items():
-            q = c["ratios"]
-            out.append("| %s | %s | %s | %s | %.0f %% | %.1f | %.1f | %.2f [%.2f..%.2f] |" % (
+            out.append("| %s | %s | %s | %s | %.0f %% | %.1f | %.1f | %s |" % (
                 r["scene"], format(r["n_tri"], ","), name, format(c["rays"], ","),
                 100.0 * c["rays"] / total, c["ours_ns"], c["theirs_ns"],
-                statistics.median(q), min(q), max(q)))
+                bench_tables.median_range(c["ratios"])))
     return "\n".join(out)

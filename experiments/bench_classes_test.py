@@ -5,7 +5,7 @@ import bench_classes
 
 
 def record(scene, n_tri, classes, threads=1):
-    return {"scene": scene, "n_tri": n_tri, "threads": threads,
+    return {"scene": scene, "n_tri": n_tri, "preset": "sah-packet", "threads": threads,
             "ray_classes": {"rounds": 2, "classes": classes}}
 
 
@@ -34,7 +34,8 @@ class ClassesSummaryTest(unittest.TestCase):
     def test_falls_back_to_kd_and_skips_records_without_classes(self):
         classes = {"camera_hit": {"rays": 4, "ns_runs": {"kd": [2.0], "embree": [1.0]}},
                    "shadow": {"rays": 4, "ns_runs": {"kd": [2.0]}}}  # no Embree: left out
-        records = [record("a", 10, classes), {"scene": "b", "n_tri": 5, "threads": 1},
+        records = [record("a", 10, classes),
+                   {"scene": "b", "n_tri": 5, "preset": "sah-packet", "threads": 1},
                    record("c", 10, classes, threads=2)]
         rows = [l for l in bench_classes.classes_summary(records).splitlines()
                 if l.startswith("| a |")]

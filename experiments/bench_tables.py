@@ -269,6 +269,13 @@ def per_round_ratio(tracers, theirs, ours, runs_of=t_r_runs):
     return statistics.median(r), min(r), max(r)
 
 
+def median_range(values):
+    """A table cell: the median [lowest..highest] of `values`, "-" for none."""
+    if not values:
+        return "-"
+    return "%.2f [%.2f..%.2f]" % (statistics.median(values), min(values), max(values))
+
+
 def one_thread_by_size(records):
     """The one-thread records, by triangle count, scene and preset."""
     one_thread = [r for r in records if r.get("threads") == 1]

@@ -31,15 +31,10 @@ def first_and_second(tracers, name, key):
     return [(f, t - o) for f, o, t in zip(first, once, twice)]
 
 
-def cell(values):
-    if not values:
-        return "-"
-    return "%.2f [%.2f..%.2f]" % (statistics.median(values), min(values), max(values))
-
-
 def warm_summary(records):
     """One row per one-thread record, pass and kind of tracing with both
     tracers traced twice (see the module's text)."""
+    cell = bench_tables.median_range
     out = ["| scene | triangles | rays | ours: second / first trace "
            "| Embree: second / first trace | Embree's over ours: first trace "
            "| Embree's over ours: second trace |", "|---|---|---|---|---|---|---|"]
