@@ -87,7 +87,7 @@ def render(data):
                "tracing time over ours in the same round (above 1: ours is the "
                "faster), with the rounds' range. Single rays: "
                "\\texttt{rtcIntersect1} / \\texttt{rtcOccluded1} against the faster "
-               "per round of our two single-ray modes; packets: Embree's 16-ray "
+               "per round of our three single-ray modes; packets: Embree's 16-ray "
                "packets (\\texttt{rtcIntersect16} with its coherent flag, "
                "\\texttt{rtcOccluded16}) against our $4\\times 4$ packets, on the "
                "same blocks of pixels. A dash: the run recorded no passes.")

@@ -129,6 +129,11 @@ class EmbreeTest(Fixture):
         # round min(0.5, 0.25, 0.2), min(0.4, 0.5, 0.45), median 0.3.
         ratio, _ = embree.time_to_image(dict(r, T_R_single_origin_runs=[0.2, 0.45]))
         self.assertAlmostEqual(ratio, (0.2 + 0.25) / (1.0 + 0.3))
+        # The BVH over the leaves counts with its build: min(0.5, 0.25, 0.1 +
+        # 0.05), min(0.4, 0.5, 0.5 + 0.05), median 0.275.
+        ratio, _ = embree.time_to_image(dict(r, T_R_single_bvh_runs=[0.1, 0.5],
+                                             single_bvh_build_s=0.05))
+        self.assertAlmostEqual(ratio, (0.2 + 0.25) / (1.0 + 0.275))
         self.assertEqual(embree.time_to_image(dict(r, T_R_fast_runs=[0.3])), (None, []))
         self.assertEqual(embree.time_to_image(dict(r, embree_packets_T_R_runs=None)), (None, []))
         self.assertEqual(embree.time_to_image(None), (None, []))

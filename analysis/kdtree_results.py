@@ -64,9 +64,13 @@ FIELDS = {
     "fast_ratio": "fast_render.paired_ratio",
     "fast_ratio_runs": "fast_render.paired_ratio_runs",
     # Single rays against single rays (#23's bar), paired per round:
-    # Embree's single rays over the faster of our two single-ray modes (the
-    # report's rules, and the fast mode's secondary rays one ray at a time).
+    # Embree's single rays over the fastest of our single-ray modes (the
+    # report's rules, the fast mode's secondary rays one ray at a time, and
+    # since 2026-12-06 those rays through the BVH over the tree's leaves,
+    # whose build from the tree took single_bvh_build_s).
     "T_R_single_origin_runs": "fast_render.single_origin.T_R_runs",
+    "T_R_single_bvh_runs": "fast_render.single_bvh.T_R_runs",
+    "single_bvh_build_s": "fast_render.single_bvh.build_s",
     "single_ratio": "fast_render.single_paired_ratio",
     "single_ratio_runs": "fast_render.single_paired_ratio_runs",
     # Best mode against best mode, paired per round: the faster of Embree's

@@ -268,7 +268,7 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=No
     with `best`, Embree's packets and the best-mode ratios per round; with
     `robust`, (single-ray ratios, best-mode ratios, wrong shadow rays) of
     Embree built with RTC_SCENE_FLAG_ROBUST; with `single`, our other
-    single-ray mode and Embree's single rays over the faster of ours; with
+    single-ray modes and Embree's single rays over the fastest of ours; with
     `passes`, {pass: [ratio per round]} for the passes camera_single,
     shadow_single, camera_packets and shadow_packets)."""
     ratios = list(ratios)
@@ -277,6 +277,8 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=No
     if single is not None:
         out["single_origin"] = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios),
                                 "primary_s": t_r / 2, "shadow_s": t_r / 2}
+        out["single_bvh"] = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios),
+                             "primary_s": t_r / 2, "shadow_s": t_r / 2, "build_s": 0.001}
     out.update({"paired_ratio_runs": ratios, "paired_ratio": statistics.median(ratios)})
     if single is not None:
         out["single_paired_ratio_runs"] = list(single)

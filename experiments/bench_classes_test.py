@@ -21,15 +21,21 @@ class ClassesSummaryTest(unittest.TestCase):
                                                record("city", 68497, classes)])
         lines = table.splitlines()
         # Over the scenes first: each class's median share and ratio.
-        self.assertEqual(lines[2], "| camera_no_node | 2 | 75 % | 1.12 [1.12..1.12] |")
-        self.assertEqual(lines[3], "| shadow | 2 | 25 % | 0.75 [0.75..0.75] |")
+        self.assertEqual(lines[2], "| camera_no_node | kd_origin | 2 | 75 % | 1.12 [1.12..1.12] |")
+        self.assertEqual(lines[3], "| shadow | kd_origin | 2 | 25 % | 0.75 [0.75..0.75] |")
         self.assertEqual(lines[4], "")
         rows = [l for l in lines[7:] if l.startswith("| bunny")]
         self.assertEqual(len(rows), 2)
         # 10/8 and 10/10: median 1.125.
-        self.assertIn("| bunny | 69,666 | camera_no_node | 300 | 75 % | 9.0 | 10.0 | "
+        self.assertIn("| bunny | 69,666 | camera_no_node | kd_origin | 300 | 75 % | 9.0 | 10.0 | "
                       "1.12 [1.00..1.25] |", rows[0])
-        self.assertIn("| shadow | 100 | 25 % | 75.0 | 50.0 | 0.75 [0.50..1.00] |", rows[1])
+        self.assertIn("| shadow | kd_origin | 100 | 25 % | 75.0 | 50.0 | 0.75 [0.50..1.00] |", rows[1])
+
+    def test_prefers_kd_bvh(self):
+        classes = {"camera_hit": {"rays": 4, "ns_runs": {"kd_origin": [4.0], "kd_bvh": [2.0],
+                                                         "embree": [1.0]}}}
+        lines = bench_classes.classes_summary([record("a", 10, classes)]).splitlines()
+        self.assertEqual(lines[2], "| camera_hit | kd_bvh | 1 | 100 % | 0.50 [0.50..0.50] |")
 
     def test_falls_back_to_kd_and_skips_records_without_classes(self):
         classes = {"camera_hit": {"rays": 4, "ns_runs": {"kd": [2.0], "embree": [1.0]}},
@@ -40,7 +46,7 @@ class ClassesSummaryTest(unittest.TestCase):
         rows = [l for l in bench_classes.classes_summary(records).splitlines()
                 if l.startswith("| a |")]
         self.assertEqual(len(rows), 1)
-        self.assertIn("| a | 10 | camera_hit | 4 | 100 % | 2.0 | 1.0 | 0.50 [0.50..0.50] |",
+        self.assertIn("| a | 10 | camera_hit | kd | 4 | 100 % | 2.0 | 1.0 | 0.50 [0.50..0.50] |",
                       rows[0])
         self.assertEqual(bench_classes.classes_summary([records[1]]), "")
 

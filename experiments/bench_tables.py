@@ -214,8 +214,9 @@ def coverage_lines(rows):
 # mode is the fastest of every tracer of ours ("kd...", packet modes and
 # NAME@TARGET included; env: tracers are other trees, not modes).
 # (kd_index and kd_mailbox were removed at 4c5d23d; kept here so that older
-# records are still summarised as they were.)
-SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin")
+# records are still summarised as they were.) kd_bvh: the kd-tree's leaves
+# under a BVH (cc/kdtree/leaf_bvh.h), single rays.
+SINGLE_MODES = ("kd", "kd_index", "kd_mailbox", "kd_origin", "kd_bvh")
 EMBREE_SINGLE = ("embree",)
 EMBREE_ALL = ("embree", "embree_packet")
 # The same Embree with RTC_SCENE_FLAG_ROBUST (render_bench --embree_robust).

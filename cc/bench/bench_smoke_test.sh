@@ -55,7 +55,7 @@ printf 'KDTree {\n    traversalCost 30\n}\n' > kt30.env
 # Every tracer also tracing each query twice (--twice), and the single-ray tracers per
 # class of ray (--classes), with one thread only.
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1,2 \
-  --repeats=1 --warmup=0 --variants=kd_origin --embree=medium --embree_packets=false \
+  --repeats=1 --warmup=0 --variants=kd_origin,kd_bvh --embree=medium --embree_packets=false \
   --embree_robust=false --twice --classes --out=twice.jsonl > /dev/null
 if "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --repeats=0 > /dev/null 2> err.txt; then
   echo "--repeats=0 accepted"; exit 1
@@ -173,11 +173,15 @@ check(env[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_packet_origin": 
                                                              "env:kt30.env": 0}, "env: variants")
 twice = [json.loads(l) for l in open("twice.jsonl")]
 check([list(r["tracers"]) for r in twice] ==
-      [["kd_origin", "embree", "kd_origin_twice", "embree_twice", "replay", "replay_packet"],
-       ["kd_origin", "embree"]], "twice: each traced tracer again, with one thread")
+      [["kd_origin", "kd_bvh", "embree", "kd_origin_twice", "kd_bvh_twice", "embree_twice",
+        "replay", "replay_packet"],
+       ["kd_origin", "kd_bvh", "embree"]], "twice: each traced tracer again, with one thread")
+check(twice[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_origin": 0, "kd_bvh": 0},
+      "kd_bvh: the kd-tree's answers")
+check(twice[0]["bvh_bytes"] > 0 and twice[0]["bvh_build_s"] >= 0, "kd_bvh: its bytes and build")
 classes = twice[0]["ray_classes"]["classes"]
-check("shadow" in classes and all(list(c["ns_runs"]) == ["kd_origin", "embree"]
-                                  and list(c["embree_over"]) == ["kd_origin"]
+check("shadow" in classes and all(list(c["ns_runs"]) == ["kd_origin", "kd_bvh", "embree"]
+                                  and list(c["embree_over"]) == ["kd_origin", "kd_bvh"]
                                   for c in classes.values()),
       "classes: the single-ray tracers, not the twice ones, paired with Embree's")
 check(twice[1]["ray_classes"] is None, "classes: one thread only")

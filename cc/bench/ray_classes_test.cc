@@ -45,9 +45,13 @@ TEST_F(RayClassesTest, EveryRayInTheClassOfWhatItDoes) {
       TraversalCounters counters;
       const Hit h = Intersect(tree_, c.rays[i], TraversalOptions(), &counters);
       const bool reached = counters.inner_visits + counters.leaf_visits > 0;
-      if (c.name == "camera_no_node") EXPECT_FALSE(reached);
-      if (c.name == "camera_miss") EXPECT_TRUE(reached && !h.hit());
-      if (c.name == "camera_hit") EXPECT_TRUE(h.hit());
+      if (c.name == "camera_no_node") {
+        EXPECT_FALSE(reached);
+      } else if (c.name == "camera_miss") {
+        EXPECT_TRUE(reached && !h.hit());
+      } else if (c.name == "camera_hit") {
+        EXPECT_TRUE(h.hit());
+      }
     }
     EXPECT_EQ(c.any_hit, c.name == "shadow");
     EXPECT_EQ(c.origin_tris.size(), c.any_hit ? c.rays.size() : 0u);

@@ -59,7 +59,8 @@
 // cc/kdtree/ray_packet.h), "kd_origin" (kd, with shadow and AO rays leaving
 // their origin triangle untested and searched from their end,
 // RenderOptions::skip_origin; validated on every recorded secondary ray),
-// "kd_packet_origin" (both: packets, and shadow rays as in kd_origin); Embree likewise as "embree" (rtcIntersect1 /
+// "kd_packet_origin" (both: packets, and shadow rays as in kd_origin), "kd_bvh"
+// (kd_origin's rays through the BVH over the tree's leaves, cc/kdtree/leaf_bvh.h); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
 // ratios of every kd tracer to each; with --embree_robust (the default) also
 // as "embree_robust" and "embree_robust_packet", Embree's scene built with
@@ -134,7 +135,7 @@ ABSL_FLAG(int, warmup, 1,
           "T_R_warmup_runs).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_packet,kd_origin,kd_packet_origin",
-          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin; NAME@TARGET "
+          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin, kd_bvh; NAME@TARGET "
           "runs the packet kernel on that Highway target (kd_packet_origin@AVX2; the "
           "machine's: ray_packet.h PacketKernelTargets).");
 ABSL_FLAG(std::string, envs, "",
@@ -411,6 +412,9 @@ absl::Status RunScene(const std::string& scene, const Context& ctx, FILE* out) {
                 // Embree.
                 {"tree_bytes", TreeBytes(*tree)},
                 {"embree_bvh_bytes", embrees.empty() ? Json() : Json(embrees[0]->bvh_bytes())},
+                // kd_bvh's nodes (its leaves are the tree's) and their build.
+                {"bvh_bytes", (*trees)->bvh->bvh().bytes()},
+                {"bvh_build_s", (*trees)->bvh_build_seconds},
                 {"tracers", std::move(tracers)},
                 {"ratio_kd_over_embree", std::move(ratios)},
                 {"ratio_kd_over_embree_packet", std::move(packet_ratios)},

@@ -3,6 +3,8 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "absl/time/clock.h"
+#include "absl/time/time.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/env_file.h"
 #include "cc/kdtree/traversal.h"
@@ -18,6 +20,9 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
   auto trees = std::make_unique<SceneTrees>();
   trees->tree = *std::move(tree);
   trees->kd = std::make_unique<KdTreeTracer>(trees->tree);
+  const absl::Time start = absl::Now();
+  trees->bvh = std::make_unique<KdTreeBvhTracer>(trees->tree);
+  trees->bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - start);
   for (const std::string& path : env_paths) {
     absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, config);
     if (!env.ok()) return env.status();
@@ -47,6 +52,8 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
       entries.emplace_back(v, trees.kd.get(), false, true);
     } else if (v == "kd_packet_origin") {
       entries.emplace_back(v, trees.kd.get(), true, true);
+    } else if (v == "kd_bvh") {
+      entries.emplace_back(v, trees.bvh.get(), false, true);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }

@@ -30,6 +30,10 @@ struct SceneTrees {
   };
   KdTree tree;
   std::unique_ptr<KdTreeTracer> kd;
+  // The same tree's leaves under a BVH (kd_bvh; cc/kdtree/leaf_bvh.h), and
+  // the seconds its build took.
+  std::unique_ptr<KdTreeBvhTracer> bvh;
+  double bvh_build_seconds = 0;
   std::vector<EnvTree> envs;
 };
 
@@ -38,7 +42,8 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths);
 
 // The entries `names` ask for ("kd", "kd_packet", "kd_origin",
-// "kd_packet_origin", each optionally NAME@TARGET: the packet
+// "kd_packet_origin", "kd_bvh" (single rays through the BVH over the
+// leaves, secondary rays as kd_origin's), each optionally NAME@TARGET: the packet
 // kernel on that Highway target), then one per environment tree (with
 // `env_packets`, traced as kd_packet_origin, else as kd). Error: an unknown
 // name.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 #include "cc/kdtree/tree.h"
@@ -43,6 +44,27 @@ class KdTreeTracer : public Tracer {
   TraversalOptions options_;
   PacketCounters* closest_ = nullptr;
   PacketCounters* any_ = nullptr;
+};
+
+// The kd-tree's leaves under a BVH (cc/kdtree/leaf_bvh.h) for single rays;
+// packets as KdTreeTracer (the kd-tree's packet traversal: the same answers).
+// Secondary rays that name their origin triangle leave it untested, as in
+// KdTreeTracer::Occluded. `tree` must outlive it.
+class KdTreeBvhTracer : public KdTreeTracer {
+ public:
+  explicit KdTreeBvhTracer(const KdTree& tree)
+      : KdTreeTracer(tree), tree_(tree), bvh_(BuildLeafBvh(tree)) {}
+  std::string name() const override { return "kdtree_bvh"; }
+  using Tracer::Occluded;
+  Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(tree_, bvh_, ray); }
+  bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
+    return OccludedLeafBvh(tree_, bvh_, ray, origin_tri);
+  }
+  const LeafBvh& bvh() const { return bvh_; }
+
+ private:
+  const KdTree& tree_;
+  LeafBvh bvh_;
 };
 
 // Every triangle tested (cc/kdtree/brute_force.h). `bf` must outlive it.

@@ -13,6 +13,7 @@
 #include "cc/base/json_line.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 #include "nlohmann/json.hpp"
@@ -87,12 +88,19 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
   // Any hit searched from the ray's end too (the renderer's secondary rays).
   TraversalOptions from_end = options;
   from_end.from_end = true;
+  // The BVH over the tree's leaves (leaf_bvh.h), watertight test only.
+  const bool bvh_applies = mode == IntersectionMode::kWatertight;
+  const LeafBvh bvh = bvh_applies ? BuildLeafBvh(tree) : LeafBvh();
   ParallelFor(rays.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Hit got = Intersect(tree, rays[i], WithTest(mode));
       bad[i] = !SameHit(got, reference[i]);
       bad_any[i] = Occluded(tree, rays[i], WithTest(mode)) != reference[i].hit();
       bad_any[i] |= Occluded(tree, rays[i], from_end) != reference[i].hit();
+      if (bvh_applies) {
+        bad[i] |= !SameHit(IntersectLeafBvh(tree, bvh, rays[i]), reference[i]);
+        bad_any[i] |= OccludedLeafBvh(tree, bvh, rays[i]) != reference[i].hit();
+      }
     }
     // The packet traversal (ray_packet.h) on consecutive rays, kRayPacketSize
     // (16) at a time:

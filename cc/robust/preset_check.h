@@ -7,7 +7,8 @@
 // reference exactly; "0 mismatches" is the only pass. The any-hit query
 // (Occluded) is checked against the reference's closest hit as well, front to
 // back and from the ray's end (TraversalOptions::from_end), single rays and
-// packets.
+// packets; with the watertight test, the BVH over the tree's leaves too
+// (cc/kdtree/leaf_bvh.h: both queries).
 //
 // Every result is also printed as one JSON line prefixed "ROBUST_JSON " (case,
 // preset, mode, rays, hits, mismatches), collected for the report.

@@ -300,7 +300,7 @@ absl::Status Run() {
   choice.embree_timed = f.embree_timed;
   choice.embree_robust = absl::GetFlag(FLAGS_embree_robust);
   choice.render = ropt;
-  absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, kd, b.embree.get(), f.eo, choice);
+  absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, tree, kd, b.embree.get(), f.eo, choice);
   if (!lane_set.ok()) return lane_set.status();
   std::vector<Lane>& lanes = lane_set->lanes;
   PassOutputs outputs;
@@ -322,7 +322,10 @@ absl::Status Run() {
   const Json cpu = QuietCpuJson(quiet ? &*quiet : nullptr);
   quiet.reset();
   progress.Phase("timed renders");
-  lane_set->robust.reset();  // before the timed builds, as they free the other tracers
+  // Before the timed builds, as they free the other tracers (the BVH's
+  // build time is kept: the record's fast_render.single_bvh.build_s).
+  lane_set->robust.reset();
+  lane_set->bvh.reset();
   // The lanes' tracers (the warm trees) are freed by the timed builds.
   st = TimeBuildRounds(*soup, rc.config, f.embree_timed ? &f.eo : nullptr, f.repeats, f.budget_s, step, &b);
   lock.Release();
@@ -350,7 +353,7 @@ absl::Status Run() {
   rec["image"] = png.empty() ? Json() : Json(png);
   rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
   AddComparisons(lanes, choice.fast, f.use_embree ? &f.quality : nullptr, f.embree_timed, b,
-                 untimed->disagreements, pixels, &rec);
+                 untimed->disagreements, pixels, lane_set->bvh_build_s, &rec);
   AddRobustEmbree(lanes, untimed->robust_disagreements, &rec);
   AddPassComparisons(lanes, &rec);
   Provenance prov = CollectProvenance(Workspace());

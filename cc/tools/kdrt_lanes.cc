@@ -2,11 +2,14 @@
 
 #include <utility>
 
+#include "absl/time/clock.h"
+#include "absl/time/time.h"
+
 #include "cc/tools/kdrt_record.h"
 
 namespace kdtree {
 
-absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const Tracer& kd,
+absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, const Tracer& kd,
                                   const EmbreeTracer* embree, const EmbreeOptions& eo,
                                   const LaneChoice& choice) {
   LaneSet set;
@@ -21,6 +24,10 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const Tracer& kd,
     RenderOptions so = ropt;
     so.skip_origin = true;
     lanes.push_back({kSingleOriginLane, &kd, so});
+    const absl::Time start = absl::Now();
+    set.bvh = std::make_unique<KdTreeBvhTracer>(tree);
+    set.bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
+    lanes.push_back({kSingleBvhLane, set.bvh.get(), so});
   }
   const bool timed = choice.embree_timed && embree != nullptr;
   set.embree_lane = lanes.size();

@@ -11,6 +11,8 @@
 #include "absl/status/statusor.h"
 #include "cc/embree/embree_tracer.h"
 #include "cc/geometry/triangle.h"
+#include "cc/kdtree/tree.h"
+#include "cc/render/kdtree_tracer.h"
 #include "cc/render/renderer.h"
 #include "cc/render/replay_tracer.h"
 #include "cc/render/tracer.h"
@@ -33,13 +35,18 @@ struct LaneSet {
   size_t embree_lane = 0;  // index of Embree's single-ray lane (when timed)
   size_t robust_lane = 0;  // index of the robust Embree's first lane (when built)
   std::unique_ptr<EmbreeTracer> robust;  // Embree built with RTC_SCENE_FLAG_ROBUST, or null
+  // With `fast`: the tree's leaves under a BVH (cc/kdtree/leaf_bvh.h), the
+  // third single-ray mode, and the seconds its build took.
+  std::unique_ptr<KdTreeBvhTracer> bvh;
+  double bvh_build_s = 0;
   std::unique_ptr<ReplayTracer> replay_single, replay_packets;  // or null
 };
 
 // In order: the kd-tree (the report's rules); with `fast` its fastest mode
 // (packets of 4x4 pixels, shadow rays leaving their origin triangle untested
 // and searched from the light: RenderOptions::skip_origin) and those shadow
-// rays one at a time; Embree's single rays when timed, and with `fast` its
+// rays one at a time, then the same rays one at a time through the BVH over
+// `tree`'s leaves (kd-tree's tracer is on `tree`); Embree's single rays when timed, and with `fast` its
 // packet calls on the same blocks (rtcIntersect16 with the coherent flag,
 // rtcOccluded16: its best mode is the faster of the two, #23's fair bar);
 // with `fast` and `embree_robust` a second Embree built robust (`eo` with
@@ -47,7 +54,7 @@ struct LaneSet {
 // thread, the kd-tree's answers replayed (replay_tracer.h: the renderer's
 // own work), single rays and packets, for each pass's tracing time alone
 // (record fast_render.passes). `embree` may be null when not timed.
-absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const Tracer& kd,
+absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, const Tracer& kd,
                                   const EmbreeTracer* embree, const EmbreeOptions& eo,
                                   const LaneChoice& choice);
 

@@ -124,10 +124,12 @@ std::vector<double> FastestRatios(const std::vector<const Lane*>& theirs,
 
 // Our single-ray modes: the kd-tree's lane (the report's rules) and, with the
 // fast mode, kSingleOriginLane (shadow rays leaving their origin
-// triangle untested, from the light, one ray at a time).
+// triangle untested, from the light, one ray at a time) and kSingleBvhLane
+// (the same rays through the BVH over the leaves).
 std::vector<const Lane*> OurSingleLanes(const std::vector<Lane>& lanes) {
   std::vector<const Lane*> out = {&lanes.front()};
   if (const Lane* so = FindLane(lanes, kSingleOriginLane)) out.push_back(so);
+  if (const Lane* sb = FindLane(lanes, kSingleBvhLane)) out.push_back(sb);
   return out;
 }
 
@@ -150,7 +152,8 @@ Json LaneTimes(const Lane& l) {
 }  // namespace
 
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality, bool embree_timed,
-                    const TimedBuilds& b, const Json& disagreements, double pixels, Json* rec) {
+                    const TimedBuilds& b, const Json& disagreements, double pixels,
+                    double bvh_build_s, Json* rec) {
   Json& out = *rec;
   out["embree"] = nullptr;
   out["disagreements"] = quality != nullptr ? disagreements : Json();
@@ -162,6 +165,10 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
     out["fast_render"]["packet_kernel"] = PacketKernelTarget();
     if (const Lane* so = FindLane(lanes, kSingleOriginLane)) {
       out["fast_render"]["single_origin"] = LaneTimes(*so);
+    }
+    if (const Lane* sb = FindLane(lanes, kSingleBvhLane)) {
+      out["fast_render"]["single_bvh"] = LaneTimes(*sb);
+      out["fast_render"]["single_bvh"]["build_s"] = bvh_build_s;
     }
   }
   if (quality == nullptr) return;

@@ -51,6 +51,9 @@ void AddCountsAndStats(const RayCounts& counts, const TreeStats& stats, const Re
 // rays and packets, at its default flags and built robust.
 inline constexpr char kFastLane[] = "kd-tree fast";
 inline constexpr char kSingleOriginLane[] = "kd-tree single origin";
+// kSingleOriginLane's rays through the BVH over the tree's leaves
+// (cc/kdtree/leaf_bvh.h): our third single-ray mode.
+inline constexpr char kSingleBvhLane[] = "kd-tree single bvh";
 inline constexpr char kEmbreeLane[] = "embree";
 inline constexpr char kEmbreePacketsLane[] = "embree packets";
 inline constexpr char kEmbreeRobustLane[] = "embree robust";
@@ -64,12 +67,13 @@ inline constexpr char kReplayPacketsLane[] = "replay packets";
 // "fast_render": lanes are the timed lanes (the kd-tree's first; with `fast`
 // kFastLane and kSingleOriginLane; Embree's when `embree_timed`); `quality`
 // is null without Embree. Single rays against single rays take per round the
-// faster of our single-ray lanes (the first and kSingleOriginLane), best
+// fastest of our single-ray lanes (the first, kSingleOriginLane and
+// kSingleBvhLane, whose build took bvh_build_s), best
 // mode against best mode the fastest of ours (the fast mode too) over the
 // faster of Embree's two.
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
-                    double pixels, nlohmann::ordered_json* rec);
+                    double pixels, double bvh_build_s, nlohmann::ordered_json* rec);
 
 // With the lanes kEmbreeRobustLane and kEmbreeRobustPacketsLane (Embree built
 // with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds
@@ -85,7 +89,7 @@ void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_jso
 // Embree's two: adds fast_render.passes, where the gap is, per pass (camera
 // rays, shadow rays): each lane's pass time less its mode's replay in the
 // same round (its tracing time alone), Embree's over ours, paired per round;
-// single rays (Embree's against the faster of our two single-ray lanes) and
+// single rays (Embree's against the fastest of our single-ray lanes) and
 // packets (Embree's 16-ray packets against the fast mode). A round where
 // either tracing time is not positive (a pass too short to time) gives no
 // ratio, and neither does a pass without rays (no light, or no primary hit).

@@ -1,0 +1,84 @@
+// The kd-tree's leaves under a wide bounding-volume hierarchy: the same
+// leaves and triangles, reached by box tests instead of split planes.
+//
+// Why. Traced one class of rays at a time (render_bench --classes), a camera
+// ray that crosses the kd-tree's box and hits nothing costs about twice what
+// it costs Embree's BVH, and on the hairballs every class of ray loses by
+// 0.44-0.66: a ray walks 20-70 split planes through dense geometry, where a
+// BVH tests a few wide nodes. This structure keeps everything the kd-tree
+// built (its partition, its leaves, their packets: KdTree::leaf_soa, read in
+// place) and replaces the walk: each node holds up to eight children, each
+// child the box of the geometry under a kd subtree, collapsed from the
+// kd-tree's own hierarchy (a kd node's children are expanded, the one with
+// the largest surface area first, until eight are reached or only leaves
+// remain; Wald, Benthin & Boulos, "Getting rid of packets", RT 2008, and
+// Wald et al., "Embree", ACM TOG 33(4), 2014, for eight-wide nodes tested in
+// one vector). A leaf's box is the union of its triangles' boxes each
+// clipped to the leaf's cell, so the boxes of different leaves do not
+// overlap (they may touch), as the cells do not; a bounded kd-tree in the
+// sense of Woop, Marmitt & Slusallek ("B-KD trees for hardware accelerated
+// ray tracing of dynamic scenes", Graphics Hardware 2006), but wide.
+//
+// Exactness (traversal in leaf_bvh_traversal.cc). The closest hit's point p
+// on triangle T lies in the closed cell of some leaf that references T (the
+// builders keep a triangle in every leaf whose closed cell its surface meets,
+// which the kd-tree's own traversal relies on), and box(leaf) contains T's
+// part in that cell, since a box of T clipped to the cell contains it (min
+// and max are exact). The box test is conservative (Ize, "Robust BVH Ray
+// Traversal", JCGT 2(2), 2013: the slab distances are within gamma(3) of the
+// exact ones, and the interval is widened by 4 u on each side), and a box is
+// passed over only when it starts beyond the best hit by more than the
+// kd-tree's slack, so every leaf holding the closest hit or a tie is tested,
+// with the kd-tree's leaf step (leaf_step-inl.h): the answers are the
+// kd-tree's, bit for bit (leaf_bvh_test.cc, the adversarial suite's
+// preset_check.cc).
+//
+// Memory: 256 bytes a node, a fraction of the tree's bytes (render_bench's
+// record: bvh_bytes); the leaves are the kd-tree's.
+#ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
+#define KDTREE_CC_KDTREE_LEAF_BVH_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "cc/geometry/ray.h"
+#include "cc/kdtree/tree.h"
+
+namespace kdtree {
+
+inline constexpr int kBvhWidth = 8;
+
+struct alignas(64) LeafBvhNode {
+  static constexpr uint32_t kLeafBit = 0x80000000u;  // child: a leaf's first packet
+  static constexpr uint32_t kNone = 0xFFFFFFFFu;     // an unused slot (its box is empty)
+  // Per slot: the box's lo x, y, z, then hi x, y, z; an unused slot's box is
+  // lo = +inf, hi = -inf, which no ray enters.
+  float box[6][kBvhWidth];
+  // Per slot: a node's index, kLeafBit | the leaf's first packet in
+  // KdTree::leaf_soa, or kNone.
+  uint32_t child[kBvhWidth];
+};
+
+struct LeafBvh {
+  // nodes[0] is the root; empty when the tree has no triangle in a leaf.
+  std::vector<LeafBvhNode> nodes;
+  size_t bytes() const { return nodes.size() * sizeof(LeafBvhNode); }
+};
+
+// The hierarchy over `tree`'s non-empty leaves. `tree` must outlive its use.
+LeafBvh BuildLeafBvh(const KdTree& tree);
+
+// The kd-tree's queries (traversal.h, watertight test), through `bvh` built
+// from `tree`: Intersect's closest hit, bit for bit, and whether any triangle
+// but origin_tri (kNoHit: none) is hit (Occluded with that origin
+// triangle). Children are visited nearest first for the closest hit and
+// farthest first for any hit (the kd-tree's from_end order: a shadow ray
+// searched from the light).
+Hit IntersectLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray);
+bool OccludedLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray,
+                     uint32_t origin_tri = kNoHit);
+
+}  // namespace kdtree
+
+#endif  // KDTREE_CC_KDTREE_LEAF_BVH_H_

@@ -1,0 +1,143 @@
+// The BVH over the kd-tree's leaves (leaf_bvh.h) against the kd-tree's own
+// traversal, bit for bit, and against brute force: closest hits, any hits,
+// and shadow rays that leave their origin triangle untested, for every
+// preset on the generated scenes, with seeded random rays, a camera, and
+// axis-parallel rays that start on the planes of the boxes' faces.
+#include "cc/kdtree/leaf_bvh.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "cc/geometry/spawn.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/test_scenes.h"
+#include "cc/kdtree/traversal.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+TriangleSoup MakeSoup(const std::string& name) {
+  if (name == "sphere") return testing::BumpySphere(4, 1);
+  if (name == "voxels") return testing::VoxelGrid(10, 6, 10, 2);
+  if (name == "thin") return testing::ThinSoup(2000, 3);
+  if (name == "flat") return testing::FlatScene(1000, 4);
+  return {};
+}
+
+// Rays along the axes (directions with +-0 components) from points on the
+// voxel grid's integer planes, which are its leaves' box faces too.
+std::vector<Ray> AxisRays(int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> cell(-1, 11), axis(0, 2), sign(0, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    Ray r;
+    for (int k = 0; k < 3; ++k) {
+      r.origin[k] = static_cast<float>(cell(rng)) + (sign(rng) ? 0.5f : 0.0f);
+      r.dir[k] = sign(rng) ? 0.0f : -0.0f;
+    }
+    r.dir[axis(rng)] = sign(rng) ? 1.0f : -1.0f;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+class LeafBvhVsKd : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(LeafBvhVsKd, SameAnswers) {
+  const auto& [scene, preset] = GetParam();
+  const TriangleSoup soup = MakeSoup(scene);
+  absl::StatusOr<Config> config = Preset(preset);
+  ASSERT_TRUE(config.ok());
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  ASSERT_FALSE(bvh.nodes.empty());
+  const BruteForce bf(soup);
+  std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
+  for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
+  for (const Ray& r : AxisRays(3000, 9)) rays.push_back(r);
+  const Vec3 light = tree->bounds.hi + tree->bounds.Extent() * 0.5f;
+  TraversalOptions from_end;
+  from_end.from_end = true;
+  int closest = 0, any = 0, shadow = 0, hits = 0, shadows = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Hit want = Intersect(*tree, rays[i]);
+    const Hit got = IntersectLeafBvh(*tree, bvh, rays[i]);
+    closest += !testing::BitwiseSameHit(got, want);
+    any += OccludedLeafBvh(*tree, bvh, rays[i]) != want.hit();
+    if (i % 16 == 0) closest += !testing::BitwiseSameHit(got, bf.Intersect(rays[i]));
+    if (!want.hit()) continue;
+    ++hits;
+    // A shadow ray from the hit to a light beyond the box, as the renderer
+    // spawns it, leaving its origin triangle untested.
+    const Vec3 &a = soup.a(want.tri), &b = soup.b(want.tri), &c = soup.c(want.tri);
+    const Ray s = SpawnShadowRay(HitPointWithError(a, b, c, want.u, want.v),
+                                 GeometricNormal(a, b, c), light);
+    TraversalOptions o = from_end;
+    o.origin_tri = want.tri;
+    const bool blocked = Occluded(*tree, s, o);
+    shadow += OccludedLeafBvh(*tree, bvh, s, want.tri) != blocked;
+    shadows += blocked;
+  }
+  EXPECT_EQ(closest, 0);
+  EXPECT_EQ(any, 0);
+  EXPECT_EQ(shadow, 0);
+  EXPECT_GT(hits, static_cast<int>(rays.size() / 40));
+  std::printf("%s/%s: %zu rays, %d hits, %d shadow rays blocked, %zu nodes\n", scene.c_str(),
+              preset.c_str(), rays.size(), hits, shadows, bvh.nodes.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllPresets, LeafBvhVsKd,
+    ::testing::Combine(::testing::Values("sphere", "voxels", "thin", "flat"),
+                       ::testing::ValuesIn(AllPresetNames())),
+    [](const ::testing::TestParamInfo<LeafBvhVsKd::ParamType>& info) {
+      std::string name = absl::StrCat(std::get<0>(info.param), "_", std::get<1>(info.param));
+      for (char& c : name) {
+        if (c == '-') c = '_';
+      }
+      return name;
+    });
+
+TEST(LeafBvh, EmptyTreeAndMisses) {
+  TriangleSoup soup;
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, Config());
+  ASSERT_TRUE(tree.ok());
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  EXPECT_TRUE(bvh.nodes.empty());
+  Ray r;
+  r.dir = Vec3(0, 0, 1);
+  EXPECT_FALSE(IntersectLeafBvh(*tree, bvh, r).hit());
+  EXPECT_FALSE(OccludedLeafBvh(*tree, bvh, r));
+}
+
+TEST(LeafBvh, SingleLeafAndBadRays) {
+  TriangleSoup soup;
+  soup.Add({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, Config());
+  ASSERT_TRUE(tree.ok());
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  ASSERT_EQ(bvh.nodes.size(), 1u);
+  Ray r;
+  r.origin = Vec3(0.25f, 0.25f, 1);
+  r.dir = Vec3(0, 0, -1);
+  const Hit h = IntersectLeafBvh(*tree, bvh, r);
+  EXPECT_EQ(h.tri, 0u);
+  EXPECT_EQ(h.t, 1.0f);
+  EXPECT_TRUE(OccludedLeafBvh(*tree, bvh, r));
+  EXPECT_FALSE(OccludedLeafBvh(*tree, bvh, r, 0));  // its origin triangle
+  r.dir = Vec3(NAN, 0, -1);
+  EXPECT_FALSE(IntersectLeafBvh(*tree, bvh, r).hit());
+  r.dir = Vec3(0, 0, 0);
+  EXPECT_FALSE(OccludedLeafBvh(*tree, bvh, r));
+}
+
+}  // namespace
+}  // namespace kdtree
