@@ -33,8 +33,41 @@
 // kd-tree's, bit for bit (leaf_bvh_test.cc, the adversarial suite's
 // preset_check.cc).
 //
-// Memory: 256 bytes a node, a fraction of the tree's bytes (render_bench's
-// record: bvh_bytes); the leaves are the kd-tree's.
+// Memory: 256 bytes a node, 5.7 to 10 bytes a triangle on the 25 standard
+// scenes of 50k triangles or more, beside the tree's 49 to 147
+// (render_bench's record: bvh_bytes); the leaves are the kd-tree's.
+//
+// Measured (render_bench --classes, sah-packet, 25 standard scenes, two
+// processes of 5 paired rounds, 2026-12-06; README, "What the reproduction
+// found"): single rays 0.81-0.96 of Embree's speed (median 0.88), where the
+// kd-tree's own traversal gives 0.60-0.99 (0.85); render time 0.72-0.76 of
+// kd_origin's on the hairballs, up to 1.05 elsewhere.
+//
+// Tried and not kept (render_bench, sah-packet, one process, the variant
+// on a second copy of the tree or of the code, 5 paired rounds, on bunny,
+// city2, lost-empire, hairball-small, courtyard-1m and teapots unless said;
+// 2026-12-06):
+//  - boxes padded by 2^-20 of the scene's reach (not needed: the boxes are
+//    exact), in a first version: on lost-empire its shadow rays took 1.75
+//    times as long as this version's (render_bench --classes, paired with
+//    Embree's, two processes each), as a ray leaving a flat surface entered
+//    the padded flat boxes beside it;
+//  - nodes of four children (SSE, 128 bytes): renders 1.10-1.17 times as
+//    long;
+//  - a leaf's packets as leaves of their own, each with its box: 0.99-1.19
+//    (bunny, teapots, city2);
+//  - the kd-tree's front-to-back order stored per node and direction octant
+//    (a permutation of the slots), the hit children compressed onto the
+//    stack in that order, without a branch or a sort: renders 1.04-1.06
+//    times as long, passes up to 1.14: the permute and the compress lengthen
+//    every node's dependent chain;
+//  - any-hit children in slot order instead of farthest first: shadow pass
+//    0.96-1.03;
+//  - prefetching the children pushed on the stack: within 2 %.
+// Open: the tree is sah-packet's, tuned for the kd-tree's traversal (K_T
+// 45). On bunny alone, in the first version, K_T 20 rendered through the
+// BVH in 0.96 of K_T 45's time (K_T 5 and 10: 1.07 and 1.01); not measured
+// further.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
