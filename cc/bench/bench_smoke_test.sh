@@ -47,10 +47,10 @@ BUILD_WORKSPACE_DIRECTORY="$T/repo" BUILD_WORKING_DIRECTORY="$T/elsewhere" \
   "$BIN/render_bench" --scenes=tiny --cache_dir= --preset=clipping-pruning --threads=1,2 \
   --repeats=2 --warmup=1 --variants=kd,kd_packet --embree=medium --out=render.jsonl \
   > render.stdout
-# A tree with an environment file on top, traced with packets (--env_packets).
+# A tree with an environment file on top, traced with packets (--env_variant).
 printf 'KDTree {\n    traversalCost 30\n}\n' > kt30.env
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1 \
-  --repeats=1 --warmup=0 --variants=kd_packet_origin --envs=kt30.env --env_packets \
+  --repeats=1 --warmup=0 --variants=kd_packet_origin --envs=kt30.env --env_variant=kd_packet_origin \
   --embree=off --out=env.jsonl > /dev/null
 # Every tracer also tracing each query twice (--twice), and the single-ray tracers per
 # class of ray (--classes), with one thread only.

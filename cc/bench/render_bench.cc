@@ -71,7 +71,7 @@
 // AVX-512 machine), validated like the others, to compare kernel widths on
 // the same rays. --envs adds one
 // tree per environment file (the preset with the file on top), timed with the
-// kd traversal (--env_packets: as kd_packet_origin) in the same rounds:
+// kd traversal (--env_variant: as kd_packet_origin or kd_bvh) in the same rounds:
 // constants are tuned on the same rays and
 // under the same load, and every such tree must give kd's exact hits.
 //
@@ -117,10 +117,10 @@ ABSL_FLAG(std::string, envs, "",
           "build one more tree, timed as tracer env:<file name> in the same rounds (for tuning "
           "a tree's constants on the same rays; its image must equal kd's).");
 ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
-ABSL_FLAG(bool, env_packets, false,
-          "Trace the --envs trees as kd_packet_origin (packets of 4x4 pixels, shadow rays "
-          "leaving their origin triangle) instead of as kd: to tune a tree for the packet "
-          "kernel.");
+ABSL_FLAG(std::string, env_variant, "kd",
+          "How the --envs trees are traced: kd, kd_packet_origin (packets of 4x4 pixels, "
+          "shadow rays leaving their origin triangle) or kd_bvh (the BVH over each tree's "
+          "leaves): to tune a tree for that mode.");
 ABSL_FLAG(bool, embree_packets, true,
           "Also time Embree with packets of 4x4 pixels (rtcIntersect16 / rtcOccluded16) as "
           "tracer embree_packet, the bar for kd_packet.");
@@ -168,7 +168,7 @@ bool Options(kdtree::bench::RenderBenchOptions* o) {
   o->variants = List(absl::GetFlag(FLAGS_variants));
   o->envs = List(absl::GetFlag(FLAGS_envs));
   o->embree = absl::GetFlag(FLAGS_embree);
-  o->env_packets = absl::GetFlag(FLAGS_env_packets);
+  o->env_variant = absl::GetFlag(FLAGS_env_variant);
   o->embree_packets = absl::GetFlag(FLAGS_embree_packets);
   o->embree_robust = absl::GetFlag(FLAGS_embree_robust);
   o->replay = absl::GetFlag(FLAGS_replay);

@@ -65,11 +65,12 @@ absl::StatusOr<Scene> LoadScene(const std::string& name, const RenderBenchOption
   s.config = *config;
   std::vector<std::string> envs;
   for (const std::string& path : o.envs) envs.push_back(FromInvocationDir(path));
-  absl::StatusOr<std::unique_ptr<SceneTrees>> trees = BuildSceneTrees(s.soup, s.config, envs);
+  absl::StatusOr<std::unique_ptr<SceneTrees>> trees =
+      BuildSceneTrees(s.soup, s.config, envs, o.env_variant);
   if (!trees.ok()) return trees.status();
   s.trees = *std::move(trees);
   absl::StatusOr<std::vector<Entry>> variants =
-      VariantEntries(*s.trees, o.variants, o.env_packets);
+      VariantEntries(*s.trees, o.variants, o.env_variant);
   if (!variants.ok()) return variants.status();
   s.variants = *std::move(variants);
   return s;

@@ -28,7 +28,7 @@ struct RenderBenchOptions {
   std::vector<std::string> variants;
   std::vector<std::string> envs;  // environment files, as given
   std::string embree;             // quality, or "off"
-  bool env_packets = false;
+  std::string env_variant = "kd";  // how the --envs trees are traced
   bool embree_packets = true;
   bool embree_robust = true;
   bool replay = true;

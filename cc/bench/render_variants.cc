@@ -14,7 +14,11 @@ namespace kdtree {
 namespace bench {
 
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
-    const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths) {
+    const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths,
+    const std::string& env_variant) {
+  if (env_variant != "kd" && env_variant != "kd_packet_origin" && env_variant != "kd_bvh") {
+    return absl::InvalidArgumentError(absl::StrCat("unknown environment-tree variant ", env_variant));
+  }
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, config);
   if (!tree.ok()) return tree.status();
   auto trees = std::make_unique<SceneTrees>();
@@ -31,7 +35,11 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     SceneTrees::EnvTree e;
     e.name = absl::StrCat("env:", path.substr(path.find_last_of('/') + 1));  // npos + 1 == 0
     e.tree = std::make_unique<KdTree>(*std::move(t));
-    e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
+    if (env_variant == "kd_bvh") {
+      e.tracer = std::make_unique<KdTreeBvhTracer>(*e.tree);
+    } else {
+      e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
+    }
     trees->envs.push_back(std::move(e));
   }
   return trees;
@@ -39,7 +47,7 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
 
 absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
                                                   const std::vector<std::string>& names,
-                                                  bool env_packets) {
+                                                  const std::string& env_variant) {
   std::vector<Entry> entries;
   for (const std::string& name : names) {
     // NAME@TARGET: the variant with the packet kernel on that Highway target.
@@ -61,7 +69,8 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
     if (name.size() > v.size()) entries.back().kernel = name.substr(v.size() + 1);
   }
   for (const SceneTrees::EnvTree& e : trees.envs) {
-    entries.emplace_back(e.name, e.tracer.get(), env_packets, env_packets);
+    entries.emplace_back(e.name, e.tracer.get(), env_variant == "kd_packet_origin",
+                         env_variant != "kd");
   }
   return entries;
 }

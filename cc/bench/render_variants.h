@@ -37,19 +37,21 @@ struct SceneTrees {
   std::vector<EnvTree> envs;
 };
 
-// Builds them for `soup`; `env_paths` are environment files (env_file.h).
+// Builds them for `soup`; `env_paths` are environment files (env_file.h),
+// whose trees are traced as `env_variant`: "kd", "kd_packet_origin" or
+// "kd_bvh" (their tracers are the BVH over the leaves then); else an error.
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
-    const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths);
+    const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths,
+    const std::string& env_variant = "kd");
 
 // The entries `names` ask for ("kd", "kd_packet", "kd_origin",
 // "kd_packet_origin", "kd_bvh" (single rays through the BVH over the
 // leaves, secondary rays as kd_origin's), each optionally NAME@TARGET: the packet
-// kernel on that Highway target), then one per environment tree (with
-// `env_packets`, traced as kd_packet_origin, else as kd). Error: an unknown
-// name.
+// kernel on that Highway target), then one per environment tree, traced as
+// `env_variant` (BuildSceneTrees's). Error: an unknown name.
 absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
                                                   const std::vector<std::string>& names,
-                                                  bool env_packets);
+                                                  const std::string& env_variant);
 
 // Embree built on `soup` with `options`, appended to *entries as tracer
 // `name` (single rays) and, with `packets`, `name`_packet (16-ray packets);

@@ -64,10 +64,11 @@
 //  - any-hit children in slot order instead of farthest first: shadow pass
 //    0.96-1.03;
 //  - prefetching the children pushed on the stack: within 2 %.
-// Open: the tree is sah-packet's, tuned for the kd-tree's traversal (K_T
-// 45). On bunny alone, in the first version, K_T 20 rendered through the
-// BVH in 0.96 of K_T 45's time (K_T 5 and 10: 1.07 and 1.01); not measured
-// further.
+//  - a tree tuned for this traversal: sah-packet's K_T (45, tuned for the
+//    kd-tree's walk) lowered to 20 or 30 (render_bench --envs with
+//    --env_variant kd_bvh, 5 paired rounds, 8 scenes): renders 0.977-1.048
+//    and 0.971-1.017 times as long as K_T 45's, the same tree twice
+//    0.995-1.011.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
