@@ -126,7 +126,7 @@ def main(argv=None):
     p.add_argument("--render_min_tris", type=int, default=50000)
     p.add_argument("--render_preset", default="sah-packet")
     p.add_argument("--render_variants",
-                   default="kd,kd_packet,kd_origin,kd_packet_origin,kd_bvh")
+                   default="kd,kd_packet,kd_origin,kd_packet_origin,kd_bvh,kd_bvh_packet")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--twice", action="store_true",
                    help="render_bench --twice: every tracer also traces each query twice")

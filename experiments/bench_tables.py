@@ -222,7 +222,8 @@ EMBREE_ALL = ("embree", "embree_packet")
 # The same Embree with RTC_SCENE_FLAG_ROBUST (render_bench --embree_robust).
 EMBREE_ROBUST_SINGLE = ("embree_robust",)
 EMBREE_ROBUST_ALL = ("embree_robust", "embree_robust_packet")
-PACKET_MODES = ("kd_packet", "kd_packet_origin", "embree_packet", "embree_robust_packet")
+PACKET_MODES = ("kd_packet", "kd_packet_origin", "kd_bvh_packet", "embree_packet",
+                "embree_robust_packet")
 # Issue 23's bars: single rays, best mode.
 SINGLE_TARGET, BEST_TARGET = 0.8, 1.0
 

@@ -61,7 +61,8 @@
 // their origin triangle untested and searched from their end,
 // RenderOptions::skip_origin; validated on every recorded secondary ray),
 // "kd_packet_origin" (both: packets, and shadow rays as in kd_origin), "kd_bvh"
-// (kd_origin's rays through the BVH over the tree's leaves, cc/kdtree/leaf_bvh.h); Embree likewise as "embree" (rtcIntersect1 /
+// (kd_origin's rays through the BVH over the tree's leaves, cc/kdtree/leaf_bvh.h),
+// "kd_bvh_packet" (the same in packets); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
 // ratios of every kd tracer to each; with --embree_robust (the default) also
 // as "embree_robust" and "embree_robust_packet", Embree's scene built with
@@ -109,7 +110,8 @@ ABSL_FLAG(int, warmup, 1,
           "T_R_warmup_runs).");
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_packet,kd_origin,kd_packet_origin",
-          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin, kd_bvh; NAME@TARGET "
+          "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin, kd_bvh, "
+          "kd_bvh_packet; NAME@TARGET "
           "runs the packet kernel on that Highway target (kd_packet_origin@AVX2; the "
           "machine's: ray_packet.h PacketKernelTargets).");
 ABSL_FLAG(std::string, envs, "",

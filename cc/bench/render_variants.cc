@@ -62,6 +62,8 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
       entries.emplace_back(v, trees.kd.get(), true, true);
     } else if (v == "kd_bvh") {
       entries.emplace_back(v, trees.bvh.get(), false, true);
+    } else if (v == "kd_bvh_packet") {
+      entries.emplace_back(v, trees.bvh.get(), true, true);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }

@@ -46,7 +46,8 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
 
 // The entries `names` ask for ("kd", "kd_packet", "kd_origin",
 // "kd_packet_origin", "kd_bvh" (single rays through the BVH over the
-// leaves, secondary rays as kd_origin's), each optionally NAME@TARGET: the packet
+// leaves, secondary rays as kd_origin's), "kd_bvh_packet" (the same in
+// packets of 4x4 pixels), each optionally NAME@TARGET: the packet
 // kernel on that Highway target), then one per environment tree, traced as
 // `env_variant` (BuildSceneTrees's). Error: an unknown name.
 absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,

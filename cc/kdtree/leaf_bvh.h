@@ -113,6 +113,14 @@ Hit IntersectLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray);
 bool OccludedLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray,
                      uint32_t origin_tri = kNoHit);
 
+// The same for packets of n <= 16 rays, one ray per vector lane
+// (leaf_bvh_packet_kernel.cc): each ray's answer is the single ray's, bit
+// for bit. origin_tris may be null (no ray has one).
+void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+                            Hit* hits);
+void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+                           const uint32_t* origin_tris, bool* occluded);
+
 }  // namespace kdtree
 
 #endif  // KDTREE_CC_KDTREE_LEAF_BVH_H_

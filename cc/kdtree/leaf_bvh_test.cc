@@ -5,6 +5,7 @@
 // axis-parallel rays that start on the planes of the boxes' faces.
 #include "cc/kdtree/leaf_bvh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -15,6 +16,7 @@
 #include "cc/geometry/spawn.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
 #include "gtest/gtest.h"
@@ -67,6 +69,9 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   TraversalOptions from_end;
   from_end.from_end = true;
   int closest = 0, any = 0, shadow = 0, hits = 0, shadows = 0;
+  std::vector<Ray> shadow_rays;
+  std::vector<uint32_t> shadow_origins;
+  std::vector<char> shadow_blocked;
   for (size_t i = 0; i < rays.size(); ++i) {
     const Hit want = Intersect(*tree, rays[i]);
     const Hit got = IntersectLeafBvh(*tree, bvh, rays[i]);
@@ -85,10 +90,34 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
     const bool blocked = Occluded(*tree, s, o);
     shadow += OccludedLeafBvh(*tree, bvh, s, want.tri) != blocked;
     shadows += blocked;
+    shadow_rays.push_back(s);
+    shadow_origins.push_back(want.tri);
+    shadow_blocked.push_back(blocked);
+  }
+  // Packets of 16 consecutive rays (coherent camera rows among them), each
+  // lane against its single ray, bit for bit.
+  int packets = 0;
+  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
+    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
+    Hit hits[kRayPacketSize];
+    bool occluded[kRayPacketSize];
+    IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, hits);
+    OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, occluded);
+    for (int l = 0; l < n; ++l) {
+      const Hit want = IntersectLeafBvh(*tree, bvh, rays[i + l]);
+      packets += !testing::BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
+    }
+  }
+  for (size_t i = 0; i < shadow_rays.size(); i += kRayPacketSize) {
+    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, shadow_rays.size() - i));
+    bool occluded[kRayPacketSize];
+    OccludedPacketLeafBvh(*tree, bvh, &shadow_rays[i], n, &shadow_origins[i], occluded);
+    for (int l = 0; l < n; ++l) packets += occluded[l] != (shadow_blocked[i + l] != 0);
   }
   EXPECT_EQ(closest, 0);
   EXPECT_EQ(any, 0);
   EXPECT_EQ(shadow, 0);
+  EXPECT_EQ(packets, 0);
   EXPECT_GT(hits, static_cast<int>(rays.size() / 40));
   std::printf("%s/%s: %zu rays, %d hits, %d shadow rays blocked, %zu nodes\n", scene.c_str(),
               preset.c_str(), rays.size(), hits, shadows, bvh.nodes.size());
@@ -105,6 +134,35 @@ INSTANTIATE_TEST_SUITE_P(
       }
       return name;
     });
+
+// The packet kernel on every Highway target the machine runs (AVX-512's 16
+// lanes, AVX2's two vectors of 8, SSE4's four of 4, ...).
+TEST(LeafBvh, PacketsOnEveryTarget) {
+  const TriangleSoup soup = MakeSoup("voxels");
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
+  ASSERT_TRUE(tree.ok());
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  std::vector<Ray> rays = testing::CameraRays(soup, 64, 64);
+  for (const Ray& r : testing::RandomRays(soup, 4000, 11)) rays.push_back(r);
+  for (const Ray& r : AxisRays(1000, 13)) rays.push_back(r);
+  for (const std::string& target : PacketKernelTargets()) {
+    ScopedPacketKernelTarget scoped(target);
+    ASSERT_TRUE(scoped.ok()) << target;
+    int bad = 0;
+    for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
+      const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
+      Hit hits[kRayPacketSize];
+      bool occluded[kRayPacketSize];
+      IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, hits);
+      OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, occluded);
+      for (int l = 0; l < n; ++l) {
+        const Hit want = Intersect(*tree, rays[i + l]);
+        bad += !testing::BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
+      }
+    }
+    EXPECT_EQ(bad, 0) << target;
+  }
+}
 
 TEST(LeafBvh, EmptyTreeAndMisses) {
   TriangleSoup soup;

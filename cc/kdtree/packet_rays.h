@@ -115,6 +115,16 @@ uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero);
 // box. Vector code, chosen at run time like TraceGroup.
 uint32_t SetUpLanes(const AABB& box, PacketRays* p);
 
+// Loads rays[0, n) (n <= kLanes) into *p and sets up the lanes that reach
+// the tree's box (p->live), each with origins[i] as its origin triangle
+// (ray_packet.cc).
+void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
+                   PacketRays* p);
+
+// The next group of the lanes in *rest (lanes with the same key as its
+// lowest), taken out of *rest; *rest must not be 0.
+Group NextGroup(const PacketRays& p, uint32_t* rest);
+
 // What a trace looks for: the closest hit (Intersect), or any hit (Occluded)
 // with a node's children taken front to back or from the rays' ends
 // (TraversalOptions::from_end).

@@ -60,50 +60,10 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
 // then SetUpRay: its vector path for every lane at once, its scalar path for
 // a ray with a zero direction component); rays that miss the tree's box are
 // not live.
-void Prepare(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
-             PacketRays* p) {
-  assert(n >= 0 && n <= kRayPacketSize);
-  if (n == 0) return;
-  uint32_t zero = 0;
-  const uint32_t valid = packet_internal::LoadLanes(rays, n, p, &zero);
-  if (valid == 0) return;
-  const uint32_t plain = valid & ~zero;
-  p->live = SetUpLanes(tree.bounds, p) & plain;
-  // A ray with a zero direction component: SanitizeRay's ray (its zero
-  // signed), set up alone.
-  for (uint32_t m = zero; m != 0; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    Ray ray = rays[i];
-    SanitizeRay(&ray);
-    RaySetup s;
-    if (!SetUpRayScalar(ray, tree.bounds, &s)) continue;
-    PutRay(ray, i, p);
-    SetLane(s, i, p);
-    p->live |= 1u << i;
-  }
-  // Origin triangles of the live lanes (which are among the n rays).
-  uint32_t given[kRayPacketSize];
-  std::memcpy(given, origins, n * sizeof(uint32_t));
-  for (int i = n; i < kRayPacketSize; ++i) given[i] = kNoHit;
-  uint32_t any = 0;
-  for (int i = 0; i < kRayPacketSize; ++i) {
-    p->origin[i] = (p->live >> i) & 1 ? given[i] : kNoHit;
-    any |= p->origin[i] ^ kNoHit;
-  }
-  p->has_origins = any != 0;
-}
-
-// Traces the live lanes, one group of lanes with the same direction signs and
-// watertight axes at a time.
 void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search search,
                Hit* best, PacketCounters* counters) {
   for (uint32_t rest = p.live; rest != 0;) {
-    const int first = __builtin_ctz(rest);
-    Group g;
-    g.lanes = packet_internal::SameKey(p, first, rest);
-    rest &= ~g.lanes;
-    for (int k = 0; k < 3; ++k) g.negative[k] = packet_internal::LaneNegative(p, first, k);
-    WatertightAxes(Vec3(p.dir[0][first], p.dir[1][first], p.dir[2][first]), &g.kx, &g.ky, &g.kz);
+    const Group g = packet_internal::NextGroup(p, &rest);
     if (counters != nullptr) ++counters->groups;
     packet_internal::TraceGroup(tree, p, g, search, best, counters);
   }
@@ -117,7 +77,7 @@ void TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* ori
                  packet_internal::Search search, Hit (&best)[kRayPacketSize],
                  PacketCounters* counters) {
   PacketRays p;
-  Prepare(tree, rays, n, origins, &p);
+  packet_internal::PreparePacket(tree, rays, n, origins, &p);
   for (int i = 0; i < n; ++i) {
     if (p.live & (1u << i)) best[i].t = p.tmax[i];
   }
@@ -179,5 +139,55 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
               counters);
   for (int i = 0; i < n; ++i) occluded[i] = hits[i].hit();
 }
+
+
+namespace packet_internal {
+
+void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
+                   PacketRays* p) {
+  assert(n >= 0 && n <= kRayPacketSize);
+  if (n == 0) return;
+  uint32_t zero = 0;
+  const uint32_t valid = packet_internal::LoadLanes(rays, n, p, &zero);
+  if (valid == 0) return;
+  const uint32_t plain = valid & ~zero;
+  p->live = SetUpLanes(tree.bounds, p) & plain;
+  // A ray with a zero direction component: SanitizeRay's ray (its zero
+  // signed), set up alone.
+  for (uint32_t m = zero; m != 0; m &= m - 1) {
+    const int i = __builtin_ctz(m);
+    Ray ray = rays[i];
+    SanitizeRay(&ray);
+    RaySetup s;
+    if (!SetUpRayScalar(ray, tree.bounds, &s)) continue;
+    PutRay(ray, i, p);
+    SetLane(s, i, p);
+    p->live |= 1u << i;
+  }
+  // Origin triangles of the live lanes (which are among the n rays).
+  uint32_t given[kRayPacketSize];
+  std::memcpy(given, origins, n * sizeof(uint32_t));
+  for (int i = n; i < kRayPacketSize; ++i) given[i] = kNoHit;
+  uint32_t any = 0;
+  for (int i = 0; i < kRayPacketSize; ++i) {
+    p->origin[i] = (p->live >> i) & 1 ? given[i] : kNoHit;
+    any |= p->origin[i] ^ kNoHit;
+  }
+  p->has_origins = any != 0;
+}
+
+// Traces the live lanes, one group of lanes with the same direction signs and
+// watertight axes at a time.
+Group NextGroup(const PacketRays& p, uint32_t* rest) {
+  const int first = __builtin_ctz(*rest);
+  Group g;
+  g.lanes = SameKey(p, first, *rest);
+  *rest &= ~g.lanes;
+  for (int k = 0; k < 3; ++k) g.negative[k] = LaneNegative(p, first, k);
+  WatertightAxes(Vec3(p.dir[0][first], p.dir[1][first], p.dir[2][first]), &g.kx, &g.ky, &g.kz);
+  return g;
+}
+
+}  // namespace packet_internal
 
 }  // namespace kdtree

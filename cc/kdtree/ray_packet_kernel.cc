@@ -56,52 +56,12 @@ namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Up to how many vectors of TestLeafFew (each Lanes / kPacketLanes rays) a
-// leaf gets instead of TestLeaf's kPacketLanes vectors per leaf packet: 2,
-// so rays up to half the lanes (paired rounds against 1: T_R 1.025 bunny,
-// 1.002 city, 1.041 hairball-small; 3 was no better).
-constexpr int kFewSets = 2;
-
 struct Stack {
   HWY_ALIGN float t_entry[kMaxTraversalStack][kLanes];
   HWY_ALIGN float t_exit[kMaxTraversalStack][kLanes];
   uint32_t node[kMaxTraversalStack];
   uint32_t lanes[kMaxTraversalStack];
 };
-
-// The lanes of vector [base, base + Lanes(d)) that reach a leaf, against its
-// triangles: a triangle against the lanes (TestLeaf) or, where the lanes
-// diverged and few reach it, each ray against a leaf packet's four triangles
-// at once (TestLeafFew). `lanes` and `found` hold the whole group's bits.
-template <bool kAnyHit, class D>
-HWY_INLINE void TestLeafVector(D d, const KdTree& tree, const PacketRays& p,
-                               const Frames<D>& frames, const Group& g, int base, uint32_t leaf,
-                               uint32_t* lanes, uint32_t* found, BestLanes<D>* b,
-                               PacketCounters* c) {
-  constexpr int n = static_cast<int>(hn::MaxLanes(D()));
-  const uint32_t sub = (*lanes >> base) & AllLanes<D>();
-  if (sub == 0) return;
-#if HWY_TARGET != HWY_SCALAR
-  // A leaf reached by few rays is tested a ray per block of kPacketLanes
-  // lanes (TestLeafFew), on targets of at least kPacketLanes lanes.
-  if (__builtin_popcount(sub) * kPacketLanes <= kFewSets * n) {
-    // Rays are independent: a few at a time, each set as many as fit.
-    constexpr int kPerSet = n / kPacketLanes;
-    for (uint32_t rest = sub; rest != 0;) {
-      uint32_t set = 0;
-      for (int k = 0; k < kPerSet && rest != 0; ++k) {
-        set |= rest & -rest;
-        rest &= rest - 1;
-      }
-      TestLeafFew<kAnyHit>(d, tree, p, frames, g, base, leaf, set, lanes, found, b, c);
-    }
-    return;
-  }
-#else
-  (void)n;
-#endif
-  TestLeaf<kAnyHit>(d, tree, p, frames, g, base, leaf, lanes, found, b, c);
-}
 
 // Where the kernel's time goes (in-process A/B as below, 7 paired rounds,
 // bunny, city2, courtyard-1m, fforest, lost-empire, hairball-small,

@@ -46,8 +46,8 @@ class KdTreeTracer : public Tracer {
   PacketCounters* any_ = nullptr;
 };
 
-// The kd-tree's leaves under a BVH (cc/kdtree/leaf_bvh.h) for single rays;
-// packets as KdTreeTracer (the kd-tree's packet traversal: the same answers).
+// The kd-tree's leaves under a BVH (cc/kdtree/leaf_bvh.h), single rays and
+// packets (the same answers as KdTreeTracer's).
 // Secondary rays that name their origin triangle leave it untested, as in
 // KdTreeTracer::Occluded. `tree` must outlive it.
 class KdTreeBvhTracer : public KdTreeTracer {
@@ -59,6 +59,14 @@ class KdTreeBvhTracer : public KdTreeTracer {
   Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(tree_, bvh_, ray); }
   bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
     return OccludedLeafBvh(tree_, bvh_, ray, origin_tri);
+  }
+  // Packets through the same BVH (leaf_bvh_packet_kernel.cc).
+  void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
+    IntersectPacketLeafBvh(tree_, bvh_, rays, n, hits);
+  }
+  void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                      bool* occluded) const override {
+    OccludedPacketLeafBvh(tree_, bvh_, rays, n, origin_tris, occluded);
   }
   const LeafBvh& bvh() const { return bvh_; }
 

@@ -112,10 +112,20 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
       IntersectPacket(tree, &rays[i], n, hits, options);
       OccludedPacket(tree, &rays[i], n, nullptr, occluded, options);
       OccludedPacket(tree, &rays[i], n, nullptr, occluded_end, from_end);
+      Hit bvh_hits[kRayPacketSize];
+      bool bvh_occluded[kRayPacketSize];
+      if (bvh_applies) {
+        IntersectPacketLeafBvh(tree, bvh, &rays[i], n, bvh_hits);
+        OccludedPacketLeafBvh(tree, bvh, &rays[i], n, nullptr, bvh_occluded);
+      }
       for (int l = 0; l < n; ++l) {
         bad[i + l] |= !SameHit(hits[l], reference[i + l]);
         bad_any[i + l] |= occluded[l] != reference[i + l].hit();
         bad_any[i + l] |= occluded_end[l] != reference[i + l].hit();
+        if (bvh_applies) {
+          bad[i + l] |= !SameHit(bvh_hits[l], reference[i + l]);
+          bad_any[i + l] |= bvh_occluded[l] != reference[i + l].hit();
+        }
       }
     }
   });

@@ -8,7 +8,7 @@
 // (Occluded) is checked against the reference's closest hit as well, front to
 // back and from the ray's end (TraversalOptions::from_end), single rays and
 // packets; with the watertight test, the BVH over the tree's leaves too
-// (cc/kdtree/leaf_bvh.h: both queries).
+// (cc/kdtree/leaf_bvh.h: both queries, single rays and packets).
 //
 // Every result is also printed as one JSON line prefixed "ROBUST_JSON " (case,
 // preset, mode, rays, hits, mismatches), collected for the report.

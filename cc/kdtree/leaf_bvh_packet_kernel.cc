@@ -1,0 +1,259 @@
+// Packets of 16 rays through the BVH over the kd-tree's leaves (leaf_bvh.h),
+// one ray per vector lane, for every x86 target Highway knows, chosen at run
+// time as the kd-tree's packet kernel is (ray_packet_kernel.cc).
+//
+// A group's lanes (same direction signs and watertight axes: ray_packet.cc)
+// descend together: at a node, each of the eight boxes is tested against all
+// lanes (Ize's conservative slab test, as the single rays'), and every child
+// that some lane enters is visited with the lanes that enter it, nearest
+// first for the group's lowest lane (farthest first for any hit). A leaf's
+// triangles are tested against its lanes with the kd-tree's packet leaf test
+// (leaf_test-inl.h TestLeafVector). A child is dropped for a lane whose best
+// hit so far ends before the child's box starts (with the slack).
+//
+// Exactness: a lane tests every leaf whose box its ray enters before its best
+// hit (the boxes and the test are the single ray's), the leaf test is exact
+// per lane, and Closer's tie rule does not depend on the order in which the
+// leaves come: each lane gets IntersectLeafBvh's answer, bit for bit
+// (leaf_bvh_test.cc), and so the kd-tree's.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "cc/kdtree/leaf_bvh_packet_kernel.cc"
+#ifndef HWY_COMPILE_ALL_ATTAINABLE
+#define HWY_COMPILE_ALL_ATTAINABLE
+#endif
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+#include "cc/kdtree/lane_test-inl.h"
+#include "cc/kdtree/leaf_test-inl.h"
+#include "cc/kdtree/mask_bits-inl.h"
+
+#include <cmath>
+#include <cstdint>
+
+#include "cc/kdtree/leaf_bvh.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/ray_packet.h"
+#include "cc/kdtree/traversal.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace kdtree {
+namespace packet_internal {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+struct BvhStack {
+  HWY_ALIGN float t_near[kBvhWidth * kMaxTraversalStack][kLanes];
+  uint32_t child[kBvhWidth * kMaxTraversalStack];
+  uint32_t lanes[kBvhWidth * kMaxTraversalStack];
+};
+
+// The group's lanes in kV vectors; the descent, the leaf and the pop share
+// the lanes' masks and best hits (one function, as TraceLanes).
+template <bool kAnyHit, int kV, class D>
+HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+                              const Group& g, uint32_t lanes, Hit* best) {
+  using V = hn::Vec<D>;
+  constexpr int n = static_cast<int>(hn::MaxLanes(D()));
+  static_assert(kV * n == kLanes, "the group's lanes in kV vectors");
+  V org[kV][3], inv[kV][3], tmin[kV], slack[kV];
+  Frames<D> frames[kV];
+  BestLanes<D> bl[kV];
+  const hn::RebindToUnsigned<D> du;
+  for (int v = 0; v < kV; ++v) {
+    for (int k = 0; k < 3; ++k) {
+      org[v][k] = hn::Load(d, p.org[k] + v * n);
+      inv[v][k] = hn::Load(d, p.inv[k] + v * n);
+    }
+    tmin[v] = hn::Load(d, p.tmin + v * n);
+    slack[v] = hn::Load(d, p.slack + v * n);
+    frames[v] = Frames<D>(d, p, v * n);
+    bl[v].t = hn::Load(d, p.tmax + v * n);
+    bl[v].u = bl[v].v = hn::Zero(d);
+    bl[v].tri = hn::Set(du, kNoHit);
+  }
+  int near_row[3], far_row[3];
+  for (int k = 0; k < 3; ++k) {
+    near_row[k] = g.negative[k] ? 3 + k : k;
+    far_row[k] = g.negative[k] ? k : 3 + k;
+  }
+  const V pad = hn::Set(d, 4.0f * 0x1p-24f);
+  const LeafBvhNode* nodes = bvh.nodes.data();
+  BvhStack stack;
+  int top = 0;
+  uint32_t found = 0, child = 0;
+  for (;;) {
+    while (!(child & LeafBvhNode::kLeafBit)) {
+      const LeafBvhNode& node = nodes[child];
+      HWY_ALIGN float t_near[kBvhWidth][kLanes];
+      uint32_t hit[kBvhWidth];
+      int slots[kBvhWidth], count = 0;
+      for (int s = 0; s < kBvhWidth; ++s) {
+        if (node.child[s] == LeafBvhNode::kNone) continue;
+        uint32_t m = 0;
+        for (int v = 0; v < kV; ++v) {
+          // As the single ray's BoxRay: a NaN slab distance is the first
+          // operand of Max and Min, which then return the second.
+          V tn = tmin[v];
+          V tf = kAnyHit ? bl[v].t : hn::Add(bl[v].t, slack[v]);
+          for (int k = 0; k < 3; ++k) {
+            const V a = hn::Mul(hn::Sub(hn::Set(d, node.box[near_row[k]][s]), org[v][k]), inv[v][k]);
+            const V b = hn::Mul(hn::Sub(hn::Set(d, node.box[far_row[k]][s]), org[v][k]), inv[v][k]);
+            tn = hn::Max(a, tn);
+            tf = hn::Min(b, tf);
+          }
+          tn = hn::Sub(tn, hn::Mul(hn::Abs(tn), pad));
+          tf = hn::Add(tf, hn::Mul(hn::Abs(tf), pad));
+          m |= Bits(d, hn::Le(tn, tf)) << (v * n);
+          hn::Store(tn, d, t_near[s] + v * n);
+        }
+        m &= lanes;
+        if (m == 0) continue;
+        hit[s] = m;
+        slots[count++] = s;
+      }
+      if (count == 0) goto next;
+      if (count > 1) {
+        // The lowest lane's entry distances order the children: the one to
+        // visit first last onto the stack.
+        const int lead = __builtin_ctz(lanes);
+        for (int i = 1; i < count; ++i) {
+          const int s = slots[i];
+          int j = i;
+          while (j > 0 && (kAnyHit ? t_near[slots[j - 1]][lead] < t_near[s][lead]
+                                   : t_near[slots[j - 1]][lead] > t_near[s][lead])) {
+            slots[j] = slots[j - 1];
+            --j;
+          }
+          slots[j] = s;
+        }
+        for (int i = count - 1; i > 0; --i) {
+          const int s = slots[i];
+          stack.child[top] = node.child[s];
+          stack.lanes[top] = hit[s];
+          for (int v = 0; v < kV; ++v) {
+            hn::Store(hn::Load(d, t_near[s] + v * n), d, stack.t_near[top] + v * n);
+          }
+          ++top;
+        }
+      }
+      lanes = hit[slots[0]];
+      child = node.child[slots[0]];
+    }
+    for (int v = 0; v < kV; ++v) {
+      TestLeafVector<kAnyHit>(d, tree, p, frames[v], g, v * n, child & ~LeafBvhNode::kLeafBit,
+                              &lanes, &found, &bl[v], nullptr);
+    }
+  next:
+    // Next child: each lane drops it when its box starts beyond that lane's
+    // best hit plus slack (any hit: lanes with a hit are done).
+    for (;;) {
+      if (top == 0) {
+        HWY_ALIGN float t[kLanes], u[kLanes], w[kLanes];
+        HWY_ALIGN uint32_t tri[kLanes];
+        for (int v = 0; v < kV; ++v) {
+          hn::Store(bl[v].t, d, t + v * n);
+          hn::Store(bl[v].u, d, u + v * n);
+          hn::Store(bl[v].v, d, w + v * n);
+          hn::Store(bl[v].tri, du, tri + v * n);
+        }
+        for (uint32_t m = found; m != 0; m &= m - 1) {
+          const int i = __builtin_ctz(m);
+          best[i].tri = tri[i];
+          best[i].t = t[i];
+          best[i].u = u[i];
+          best[i].v = w[i];
+        }
+        return;
+      }
+      --top;
+      uint32_t m = stack.lanes[top] & ~(kAnyHit ? found : 0u);
+      if (!kAnyHit && (m & found) != 0) {
+        uint32_t beyond = 0;
+        for (int v = 0; v < kV; ++v) {
+          const V limit = hn::Add(bl[v].t, slack[v]);
+          beyond |= Bits(d, hn::Gt(hn::Load(d, stack.t_near[top] + v * n), limit)) << (v * n);
+        }
+        m &= ~(beyond & found);
+      }
+      if (m == 0) continue;
+      lanes = m;
+      child = stack.child[top];
+      break;
+    }
+  }
+}
+
+void TraceBvhGroupImpl(const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+                       const Group& g, bool any_hit, Hit* best) {
+  const hn::ScalableTag<float> d;
+  constexpr int kV = static_cast<int>(kLanes / hn::MaxLanes(d));
+  if (g.lanes == 0) return;
+  if (any_hit) {
+    TraceBvhLanes<true, kV>(d, tree, bvh, p, g, g.lanes, best);
+  } else {
+    TraceBvhLanes<false, kV>(d, tree, bvh, p, g, g.lanes, best);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace packet_internal
+}  // namespace kdtree
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace kdtree {
+namespace packet_internal {
+HWY_EXPORT(TraceBvhGroupImpl);
+}  // namespace packet_internal
+
+namespace {
+
+// Each live lane's query through `bvh`, group by group; best[i].t must hold
+// ray i's tmax on entry for the live lanes.
+void TraceBvhPacket(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+                    const uint32_t* origins, bool any_hit, Hit (&best)[kRayPacketSize]) {
+  packet_internal::PacketRays p;
+  packet_internal::PreparePacket(tree, rays, n, origins, &p);
+  for (int i = 0; i < n; ++i) {
+    if (p.live & (1u << i)) best[i].t = p.tmax[i];
+  }
+  for (uint32_t rest = p.live; rest != 0;) {
+    const packet_internal::Group g = packet_internal::NextGroup(p, &rest);
+    HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(tree, bvh, p, g, any_hit, best);
+  }
+}
+
+}  // namespace
+
+void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+                            Hit* hits) {
+  if (bvh.nodes.empty()) {
+    for (int i = 0; i < n; ++i) hits[i] = IntersectLeafBvh(tree, bvh, rays[i]);
+    return;
+  }
+  uint32_t origins[kRayPacketSize];
+  for (int i = 0; i < n; ++i) origins[i] = kNoHit;
+  Hit best[kRayPacketSize];
+  TraceBvhPacket(tree, bvh, rays, n, origins, false, best);
+  for (int i = 0; i < n; ++i) {
+    hits[i] = best[i];
+    if (!hits[i].hit()) hits[i].t = INFINITY;
+  }
+}
+
+void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+                           const uint32_t* origin_tris, bool* occluded) {
+  if (bvh.nodes.empty()) {
+    for (int i = 0; i < n; ++i) occluded[i] = false;
+    return;
+  }
+  uint32_t origins[kRayPacketSize];
+  for (int i = 0; i < n; ++i) origins[i] = origin_tris != nullptr ? origin_tris[i] : kNoHit;
+  Hit best[kRayPacketSize];
+  TraceBvhPacket(tree, bvh, rays, n, origins, true, best);
+  for (int i = 0; i < n; ++i) occluded[i] = best[i].hit();
+}
+
+}  // namespace kdtree
+#endif  // HWY_ONCE
