@@ -121,8 +121,8 @@ ABSL_FLAG(std::string, envs, "",
 ABSL_FLAG(std::string, embree, "medium", "Embree quality: low, medium, high, or off.");
 ABSL_FLAG(std::string, env_variant, "kd",
           "How the --envs trees are traced: kd, kd_packet_origin (packets of 4x4 pixels, "
-          "shadow rays leaving their origin triangle) or kd_bvh (the BVH over each tree's "
-          "leaves): to tune a tree for that mode.");
+          "shadow rays leaving their origin triangle), kd_bvh or kd_bvh_packet (the BVH over "
+          "each tree's leaves, single rays or packets): to tune a tree for that mode.");
 ABSL_FLAG(bool, embree_packets, true,
           "Also time Embree with packets of 4x4 pixels (rtcIntersect16 / rtcOccluded16) as "
           "tracer embree_packet, the bar for kd_packet.");

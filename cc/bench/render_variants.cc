@@ -16,7 +16,8 @@ namespace bench {
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths,
     const std::string& env_variant) {
-  if (env_variant != "kd" && env_variant != "kd_packet_origin" && env_variant != "kd_bvh") {
+  if (env_variant != "kd" && env_variant != "kd_packet_origin" && env_variant != "kd_bvh" &&
+      env_variant != "kd_bvh_packet") {
     return absl::InvalidArgumentError(absl::StrCat("unknown environment-tree variant ", env_variant));
   }
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, config);
@@ -35,7 +36,7 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     SceneTrees::EnvTree e;
     e.name = absl::StrCat("env:", path.substr(path.find_last_of('/') + 1));  // npos + 1 == 0
     e.tree = std::make_unique<KdTree>(*std::move(t));
-    if (env_variant == "kd_bvh") {
+    if (env_variant == "kd_bvh" || env_variant == "kd_bvh_packet") {
       e.tracer = std::make_unique<KdTreeBvhTracer>(*e.tree);
     } else {
       e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
@@ -71,7 +72,8 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
     if (name.size() > v.size()) entries.back().kernel = name.substr(v.size() + 1);
   }
   for (const SceneTrees::EnvTree& e : trees.envs) {
-    entries.emplace_back(e.name, e.tracer.get(), env_variant == "kd_packet_origin",
+    entries.emplace_back(e.name, e.tracer.get(),
+                         env_variant == "kd_packet_origin" || env_variant == "kd_bvh_packet",
                          env_variant != "kd");
   }
   return entries;

@@ -38,8 +38,9 @@ struct SceneTrees {
 };
 
 // Builds them for `soup`; `env_paths` are environment files (env_file.h),
-// whose trees are traced as `env_variant`: "kd", "kd_packet_origin" or
-// "kd_bvh" (their tracers are the BVH over the leaves then); else an error.
+// whose trees are traced as `env_variant`: "kd", "kd_packet_origin",
+// "kd_bvh" or "kd_bvh_packet" (their tracers are the BVH over the leaves
+// then); else an error.
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths,
     const std::string& env_variant = "kd");
