@@ -52,6 +52,8 @@ namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+static_assert(HWY_ARCH_X86, "the slab test relies on x86's max and min with a NaN operand");
+
 struct BvhStack {
   HWY_ALIGN float t_near[kBvhWidth * kMaxTraversalStack][kLanes];
   uint32_t child[kBvhWidth * kMaxTraversalStack];
