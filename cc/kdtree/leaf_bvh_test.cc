@@ -50,6 +50,24 @@ std::vector<Ray> AxisRays(int count, uint32_t seed) {
   return rays;
 }
 
+// The lanes of packets of 16 consecutive rays whose closest hit or any hit
+// through `bvh` differs from the kd-tree's single ray, bit for bit.
+int PacketMismatches(const KdTree& tree, const LeafBvh& bvh, const std::vector<Ray>& rays) {
+  int bad = 0;
+  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
+    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
+    Hit hits[kRayPacketSize];
+    bool occluded[kRayPacketSize];
+    IntersectPacketLeafBvh(tree, bvh, &rays[i], n, hits);
+    OccludedPacketLeafBvh(tree, bvh, &rays[i], n, nullptr, occluded);
+    for (int l = 0; l < n; ++l) {
+      const Hit want = Intersect(tree, rays[i + l]);
+      bad += !testing::BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
+    }
+  }
+  return bad;
+}
+
 class LeafBvhVsKd : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 TEST_P(LeafBvhVsKd, SameAnswers) {
@@ -96,18 +114,7 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   }
   // Packets of 16 consecutive rays (coherent camera rows among them), each
   // lane against its single ray, bit for bit.
-  int packets = 0;
-  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
-    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
-    Hit hits[kRayPacketSize];
-    bool occluded[kRayPacketSize];
-    IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, hits);
-    OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, occluded);
-    for (int l = 0; l < n; ++l) {
-      const Hit want = IntersectLeafBvh(*tree, bvh, rays[i + l]);
-      packets += !testing::BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
-    }
-  }
+  int packets = PacketMismatches(*tree, bvh, rays);
   for (size_t i = 0; i < shadow_rays.size(); i += kRayPacketSize) {
     const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, shadow_rays.size() - i));
     bool occluded[kRayPacketSize];
@@ -148,19 +155,7 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
   for (const std::string& target : PacketKernelTargets()) {
     ScopedPacketKernelTarget scoped(target);
     ASSERT_TRUE(scoped.ok()) << target;
-    int bad = 0;
-    for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
-      const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
-      Hit hits[kRayPacketSize];
-      bool occluded[kRayPacketSize];
-      IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, hits);
-      OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, occluded);
-      for (int l = 0; l < n; ++l) {
-        const Hit want = Intersect(*tree, rays[i + l]);
-        bad += !testing::BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
-      }
-    }
-    EXPECT_EQ(bad, 0) << target;
+    EXPECT_EQ(PacketMismatches(*tree, bvh, rays), 0) << target;
   }
 }
 
