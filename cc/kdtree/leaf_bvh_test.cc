@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 #include <string>
 #include <tuple>
@@ -157,6 +159,28 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
     ASSERT_TRUE(scoped.ok()) << target;
     EXPECT_EQ(PacketMismatches(*tree, bvh, rays), 0) << target;
   }
+}
+
+// The packet kernel's slot filter (leaf_bvh_packet_kernel.cc SlotFilter)
+// bounds each lane's widened slab distance by widening a bound on it; that
+// is exact only if the widening t -/+ fl(|t| 4 u) never decreases as t
+// grows: checked here for every finite float, from -max to +max.
+TEST(LeafBvh, SlabWideningIsMonotone) {
+  const volatile float pad = 4.0f * 0x1p-24f;  // the kernels' pad, not folded
+  float prev_lo = -INFINITY, prev_hi = -INFINITY;
+  int64_t bad = 0;
+  for (int sign = 1; sign >= 0; --sign) {
+    for (uint32_t k = 0; k < 0x7f800000u; ++k) {
+      const uint32_t bits = sign ? (0x7f7fffffu - k) | 0x80000000u : k;
+      float t;
+      std::memcpy(&t, &bits, sizeof(t));
+      const float lo = t - std::fabs(t) * pad, hi = t + std::fabs(t) * pad;
+      bad += lo < prev_lo || hi < prev_hi;
+      prev_lo = lo;
+      prev_hi = hi;
+    }
+  }
+  EXPECT_EQ(bad, 0);
 }
 
 TEST(LeafBvh, EmptyTreeAndMisses) {
