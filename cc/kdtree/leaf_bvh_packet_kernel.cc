@@ -26,7 +26,15 @@
 // the float operations are monotone), every child that interval enters
 // visited with all the lanes: camera pass 1.40-2.96 times as long, shadow
 // pass 1.5-130 times (a shadow packet's origins are scattered over the
-// surfaces, so its intervals enter nearly every box).
+// surfaces, so its intervals enter nearly every box). The same test as the
+// only one at inner nodes, for camera packets (their lanes share an origin,
+// so it is tight: SlotFilter), children ordered by its bound, and each
+// lane's test of a leaf's box made when the leaf is reached (the
+// lanes then those whose ray enters it before their best hit): camera pass
+// 1.021-1.044 times as long, courtyard-1m 1.130, where the shadow pass,
+// the same code on both sides, gave 1.005-1.029 (in-process A/B, 7 paired
+// rounds, the six scenes): the lanes are no longer narrowed on the way
+// down, so each leaf's test and each node's pop serve more of them.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cc/kdtree/leaf_bvh_packet_kernel.cc"
 #ifndef HWY_COMPILE_ALL_ATTAINABLE
@@ -37,6 +45,7 @@
 #include "cc/kdtree/lane_test-inl.h"
 #include "cc/kdtree/leaf_test-inl.h"
 #include "cc/kdtree/mask_bits-inl.h"
+#include "cc/kdtree/slot_filter-inl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,95 +71,45 @@ struct BvhStack {
   uint32_t lanes[kBvhWidth * kMaxTraversalStack];
 };
 
-// Bounds on every lane's slab distances at a node, from intervals over the
-// group's lanes (Wald et al.'s packet culling; Reshetov, Soupikov & Hurley's
-// frustum): each lane's origin and reciprocal lie in [lo, hi] per axis, and
-// round-to-nearest subtraction and multiplication are monotone in each
-// operand, so products of the interval's ends bound every lane's product as
-// the lane computes it, and so do max and min. The lanes' widening, t -/+
-// fl(|t| 4 u), is monotone too (leaf_bvh_test checks every finite float), and the
-// bounds are widened by 8 u. So a slot whose lower bound on entry exceeds
-// its upper bound on exit is entered by no lane: the per-lane test runs only
-// for the other slots, and every lane's mask comes out as before. Only for
-// groups whose reciprocals are all finite (a zero direction component makes
-// 0 * inf possible). Camera rays share an origin, so their bounds are tight
-// (lost-empire: 1.6 candidates a node, 1.6 entered); a shadow packet's
-// origins are scattered (hairball-small: 3.2 candidates, 1.3 entered).
-// In-process A/B (the filter on AVX3_DL against none on AVX3, 7 paired
-// rounds, bunny, city2, lost-empire, hairball-small, courtyard-1m, teapots;
-// 2026-12-06): T_R 0.958-0.998 (camera pass 0.918-0.985, shadow
-// 0.920-1.006); the control, the filter on both, 0.944-1.007 with wider
-// spreads: a gain of a few percent at the edge of the noise.
-struct SlotFilter {
-  bool on = false;
-  float org_lo[3], org_hi[3], inv_lo[3], inv_hi[3];
-  float tmin_lo = 0.0f;
-  float tfar_hi = 0.0f;  // the lanes' highest best.t (+ slack, closest hit)
-};
-
-// The group's bounds; tfar_hi is set by the caller.
-HWY_INLINE SlotFilter MakeSlotFilter(const PacketRays& p, uint32_t lanes) {
-  SlotFilter f;
-  const int first = __builtin_ctz(lanes);
-  for (int k = 0; k < 3; ++k) {
-    f.org_lo[k] = f.org_hi[k] = p.org[k][first];
-    f.inv_lo[k] = f.inv_hi[k] = p.inv[k][first];
-  }
-  f.tmin_lo = p.tmin[first];
-  bool finite = true;
-  for (uint32_t m = lanes; m != 0; m &= m - 1) {
-    const int i = __builtin_ctz(m);
+// The lanes of all kV vectors whose rays enter slot s of `node` before
+// their best hit (+ slack, closest hit): the single ray's conservative slab
+// test (leaf_bvh_traversal.cc BoxRay), lane by lane; t_near (kLanes
+// floats) gets each lane's widened entry distance.
+template <bool kAnyHit, int kV, class D>
+HWY_INLINE uint32_t EnterLanes(D d, const LeafBvhNode& node, int s, const int near_row[3],
+                               const int far_row[3], const hn::Vec<D> (&org)[kV][3],
+                               const hn::Vec<D> (&inv)[kV][3], const hn::Vec<D> (&tmin)[kV],
+                               const hn::Vec<D> (&slack)[kV], const BestLanes<D> (&bl)[kV],
+                               float* t_near) {
+  using V = hn::Vec<D>;
+  constexpr int n = static_cast<int>(hn::MaxLanes(D()));
+  const V pad = hn::Set(d, 4.0f * 0x1p-24f);
+  uint32_t m = 0;
+  for (int v = 0; v < kV; ++v) {
+    // As the single ray's BoxRay: a NaN slab distance is the first operand
+    // of Max and Min, which then return the second.
+    V tn = tmin[v];
+    V tf = kAnyHit ? bl[v].t : hn::Add(bl[v].t, slack[v]);
     for (int k = 0; k < 3; ++k) {
-      finite &= std::isfinite(p.inv[k][i]);
-      f.org_lo[k] = std::min(f.org_lo[k], p.org[k][i]);
-      f.org_hi[k] = std::max(f.org_hi[k], p.org[k][i]);
-      f.inv_lo[k] = std::min(f.inv_lo[k], p.inv[k][i]);
-      f.inv_hi[k] = std::max(f.inv_hi[k], p.inv[k][i]);
-    }
-    f.tmin_lo = std::min(f.tmin_lo, p.tmin[i]);
-  }
-  f.on = finite;
-  return f;
-}
-
-// The slots (bit s) some lane of the group may enter: a superset of those
-// the per-lane test finds (SlotFilter). Empty slots (lo = +inf, hi = -inf)
-// give an entry of +inf and an exit of -inf, and are never candidates.
-HWY_INLINE uint32_t CandidateSlots(const SlotFilter& f, const LeafBvhNode& node,
-                                   const int near_row[3], const int far_row[3],
-                                   const bool negative[3]) {
-  const hn::CappedTag<float, kBvhWidth> d;
-  constexpr int n = static_cast<int>(hn::MaxLanes(d));
-  using V = hn::Vec<decltype(d)>;
-  const V pad = hn::Set(d, 8.0f * 0x1p-24f);
-  uint32_t bits = 0;
-  for (int base = 0; base < kBvhWidth; base += n) {
-    V tn = hn::Set(d, f.tmin_lo);
-    V tf = hn::Set(d, f.tfar_hi);
-    for (int k = 0; k < 3; ++k) {
-      const V o_lo = hn::Set(d, f.org_lo[k]), o_hi = hn::Set(d, f.org_hi[k]);
-      const V i_lo = hn::Set(d, f.inv_lo[k]), i_hi = hn::Set(d, f.inv_hi[k]);
-      const V nb = hn::LoadU(d, node.box[near_row[k]] + base);
-      const V fb = hn::LoadU(d, node.box[far_row[k]] + base);
-      // Positive reciprocals: the products grow with the distance to the
-      // plane, so the entry's lowest uses its lowest; negative: its highest.
-      const V x = negative[k] ? hn::Sub(nb, o_lo) : hn::Sub(nb, o_hi);
-      const V y = negative[k] ? hn::Sub(fb, o_hi) : hn::Sub(fb, o_lo);
-      tn = hn::Max(tn, hn::Min(hn::Mul(x, i_lo), hn::Mul(x, i_hi)));
-      tf = hn::Min(tf, hn::Max(hn::Mul(y, i_lo), hn::Mul(y, i_hi)));
+      const V a = hn::Mul(hn::Sub(hn::Set(d, node.box[near_row[k]][s]), org[v][k]), inv[v][k]);
+      const V b = hn::Mul(hn::Sub(hn::Set(d, node.box[far_row[k]][s]), org[v][k]), inv[v][k]);
+      tn = hn::Max(a, tn);
+      tf = hn::Min(b, tf);
     }
     tn = hn::Sub(tn, hn::Mul(hn::Abs(tn), pad));
     tf = hn::Add(tf, hn::Mul(hn::Abs(tf), pad));
-    bits |= Bits(d, hn::Le(tn, tf)) << base;
+    m |= Bits(d, hn::Le(tn, tf)) << (v * n);
+    hn::Store(tn, d, t_near + v * n);
   }
-  return bits;
+  return m;
 }
 
 // The group's lanes in kV vectors; the descent, the leaf and the pop share
 // the lanes' masks and best hits (one function, as TraceLanes).
 template <bool kAnyHit, int kV, class D>
 HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
-                              const Group& g, uint32_t lanes, Hit* best) {
+                              const Group& g, uint32_t lanes, const SlotFilter& filter0,
+                              Hit* best) {
   using V = hn::Vec<D>;
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
   static_assert(kV * n == kLanes, "the group's lanes in kV vectors");
@@ -175,8 +134,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
     near_row[k] = g.negative[k] ? 3 + k : k;
     far_row[k] = g.negative[k] ? k : 3 + k;
   }
-  const V pad = hn::Set(d, 4.0f * 0x1p-24f);
-  SlotFilter filter = MakeSlotFilter(p, lanes);
+  SlotFilter filter = filter0;
   // The lanes' highest exit bound: best.t (+ slack), lowered as hits come.
   const auto far_bound = [&] {
     V far = kAnyHit ? bl[0].t : hn::Add(bl[0].t, slack[0]);
@@ -199,23 +157,8 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
       for (; candidates != 0; candidates &= candidates - 1) {
         const int s = __builtin_ctz(candidates);
         if (node.child[s] == LeafBvhNode::kNone) continue;
-        uint32_t m = 0;
-        for (int v = 0; v < kV; ++v) {
-          // As the single ray's BoxRay: a NaN slab distance is the first
-          // operand of Max and Min, which then return the second.
-          V tn = tmin[v];
-          V tf = kAnyHit ? bl[v].t : hn::Add(bl[v].t, slack[v]);
-          for (int k = 0; k < 3; ++k) {
-            const V a = hn::Mul(hn::Sub(hn::Set(d, node.box[near_row[k]][s]), org[v][k]), inv[v][k]);
-            const V b = hn::Mul(hn::Sub(hn::Set(d, node.box[far_row[k]][s]), org[v][k]), inv[v][k]);
-            tn = hn::Max(a, tn);
-            tf = hn::Min(b, tf);
-          }
-          tn = hn::Sub(tn, hn::Mul(hn::Abs(tn), pad));
-          tf = hn::Add(tf, hn::Mul(hn::Abs(tf), pad));
-          m |= Bits(d, hn::Le(tn, tf)) << (v * n);
-          hn::Store(tn, d, t_near[s] + v * n);
-        }
+        uint32_t m = EnterLanes<kAnyHit, kV>(d, node, s, near_row, far_row, org, inv, tmin, slack,
+                                             bl, t_near[s]);
         m &= lanes;
         if (m == 0) continue;
         hit[s] = m;
@@ -302,10 +245,11 @@ void TraceBvhGroupImpl(const KdTree& tree, const LeafBvh& bvh, const PacketRays&
   const hn::ScalableTag<float> d;
   constexpr int kV = static_cast<int>(kLanes / hn::MaxLanes(d));
   if (g.lanes == 0) return;
+  const SlotFilter filter = MakeSlotFilter(p, g.lanes);
   if (any_hit) {
-    TraceBvhLanes<true, kV>(d, tree, bvh, p, g, g.lanes, best);
+    TraceBvhLanes<true, kV>(d, tree, bvh, p, g, g.lanes, filter, best);
   } else {
-    TraceBvhLanes<false, kV>(d, tree, bvh, p, g, g.lanes, best);
+    TraceBvhLanes<false, kV>(d, tree, bvh, p, g, g.lanes, filter, best);
   }
 }
 
