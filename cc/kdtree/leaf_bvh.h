@@ -68,7 +68,9 @@
 //    kd-tree's walk) lowered to 20 or 30 (render_bench --envs with
 //    --env_variant kd_bvh, 5 paired rounds, 8 scenes): renders 0.977-1.048
 //    and 0.971-1.017 times as long as K_T 45's, the same tree twice
-//    0.995-1.011.
+//    0.995-1.011; traced as kd_bvh_packet (six scenes, 7 paired rounds),
+//    K_T 20 0.973-1.122, 30 0.984-1.051, 60 0.990-1.031 and 90
+//    0.984-1.078, the same tree twice 1.001-1.010.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 

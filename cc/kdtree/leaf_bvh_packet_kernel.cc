@@ -77,7 +77,9 @@ struct BvhStack {
 // siblings are traced. In-process A/B (the prefetch on AVX3_DL against
 // none on AVX3, 7 paired rounds, 2026-12-06): T_R 0.951 on courtyard-1m and
 // 0.955 on hairball-1m (camera pass 0.944, 0.947), 0.976-0.996 on bunny,
-// city2, lost-empire and hairball-small (camera 0.981-0.992).
+// city2, lost-empire and hairball-small (camera 0.981-0.992); the control,
+// the same code on both, T_R 0.983-1.017 (camera 0.986-1.004). A fourth
+// line (a node's child indices) as well: T_R 0.979-1.008, no gain.
 HWY_INLINE void PrefetchChild(const KdTree& tree, const LeafBvhNode* nodes, uint32_t child) {
   const char* q =
       (child & LeafBvhNode::kLeafBit)
