@@ -200,9 +200,10 @@ def time_to_image(r):
     if isinstance(single_origin, list) and single_origin:
         ours_modes.append(single_origin)
     # The BVH over the leaves: each render plus the BVH's build from the tree.
-    single_bvh = r["T_R_single_bvh_runs"] if "T_R_single_bvh_runs" in r else None
-    if isinstance(single_bvh, list) and single_bvh:
-        ours_modes.append([t + r["single_bvh_build_s"] for t in single_bvh])
+    for col in ("T_R_single_bvh_runs", "T_R_packets_bvh_runs"):
+        bvh = r[col] if col in r else None
+        if isinstance(bvh, list) and bvh:
+            ours_modes.append([t + r["single_bvh_build_s"] for t in bvh])
     if len({len(x) for x in ours_modes + [emb_r, emb_p]}) != 1:
         return None, []
     ours = statistics.median(ours_b) + statistics.median(map(min, *ours_modes))

@@ -134,6 +134,10 @@ class EmbreeTest(Fixture):
         ratio, _ = embree.time_to_image(dict(r, T_R_single_bvh_runs=[0.1, 0.5],
                                              single_bvh_build_s=0.05))
         self.assertAlmostEqual(ratio, (0.2 + 0.25) / (1.0 + 0.275))
+        # So do its packets, with the same build.
+        ratio, _ = embree.time_to_image(dict(r, T_R_packets_bvh_runs=[0.1, 0.5],
+                                             single_bvh_build_s=0.05))
+        self.assertAlmostEqual(ratio, (0.2 + 0.25) / (1.0 + 0.275))
         self.assertEqual(embree.time_to_image(dict(r, T_R_fast_runs=[0.3])), (None, []))
         self.assertEqual(embree.time_to_image(dict(r, embree_packets_T_R_runs=None)), (None, []))
         self.assertEqual(embree.time_to_image(None), (None, []))

@@ -71,6 +71,9 @@ FIELDS = {
     "T_R_single_origin_runs": "fast_render.single_origin.T_R_runs",
     "T_R_single_bvh_runs": "fast_render.single_bvh.T_R_runs",
     "single_bvh_build_s": "fast_render.single_bvh.build_s",
+    # Our second packet mode (since 2026-12-06): the fast mode's packets
+    # through the same BVH (its build: single_bvh_build_s).
+    "T_R_packets_bvh_runs": "fast_render.packets_bvh.T_R_runs",
     "single_ratio": "fast_render.single_paired_ratio",
     "single_ratio_runs": "fast_render.single_paired_ratio_runs",
     # Best mode against best mode, paired per round: the faster of Embree's

@@ -28,6 +28,7 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     set.bvh = std::make_unique<KdTreeBvhTracer>(tree);
     set.bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
     lanes.push_back({kSingleBvhLane, set.bvh.get(), so});
+    lanes.push_back({kPacketsBvhLane, set.bvh.get(), fo});
   }
   const bool timed = choice.embree_timed && embree != nullptr;
   set.embree_lane = lanes.size();

@@ -133,10 +133,17 @@ std::vector<const Lane*> OurSingleLanes(const std::vector<Lane>& lanes) {
   return out;
 }
 
-// Our single-ray modes and the fast mode.
+// Our packet modes: the fast mode and, when timed, kPacketsBvhLane.
+std::vector<const Lane*> OurPacketLanes(const std::vector<Lane>& lanes, const Lane& fast) {
+  std::vector<const Lane*> out = {&fast};
+  if (const Lane* pb = FindLane(lanes, kPacketsBvhLane)) out.push_back(pb);
+  return out;
+}
+
+// Our single-ray modes and our packet modes.
 std::vector<const Lane*> OurLanes(const std::vector<Lane>& lanes, const Lane& fast) {
   std::vector<const Lane*> out = OurSingleLanes(lanes);
-  out.push_back(&fast);
+  for (const Lane* l : OurPacketLanes(lanes, fast)) out.push_back(l);
   return out;
 }
 
@@ -169,6 +176,10 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
     if (const Lane* sb = FindLane(lanes, kSingleBvhLane)) {
       out["fast_render"]["single_bvh"] = LaneTimes(*sb);
       out["fast_render"]["single_bvh"]["build_s"] = bvh_build_s;
+    }
+    if (const Lane* pb = FindLane(lanes, kPacketsBvhLane)) {
+      out["fast_render"]["packets_bvh"] = LaneTimes(*pb);
+      out["fast_render"]["packets_bvh"]["build_s"] = bvh_build_s;
     }
   }
   if (quality == nullptr) return;
@@ -269,7 +280,7 @@ void AddPassComparisons(const std::vector<Lane>& lanes, Json* rec) {
     };
     const std::string pass = shadow ? "shadow" : "camera";
     passes[pass + "_single"] = ratio({el}, OurSingleLanes(lanes), *rs);
-    passes[pass + "_packets"] = ratio({ep}, {fl}, *rp);
+    passes[pass + "_packets"] = ratio({ep}, OurPacketLanes(lanes, *fl), *rp);
   }
   passes["replay_primary_s_runs"] = rs->timed.t_primary;
   passes["replay_shadow_s_runs"] = rs->timed.t_shadow;

@@ -54,6 +54,9 @@ inline constexpr char kSingleOriginLane[] = "kd-tree single origin";
 // kSingleOriginLane's rays through the BVH over the tree's leaves
 // (cc/kdtree/leaf_bvh.h): our third single-ray mode.
 inline constexpr char kSingleBvhLane[] = "kd-tree single bvh";
+// The fast mode's rays in its packets through the same BVH
+// (leaf_bvh_packet_kernel.cc): our second packet mode.
+inline constexpr char kPacketsBvhLane[] = "kd-tree packets bvh";
 inline constexpr char kEmbreeLane[] = "embree";
 inline constexpr char kEmbreePacketsLane[] = "embree packets";
 inline constexpr char kEmbreeRobustLane[] = "embree robust";
@@ -69,8 +72,8 @@ inline constexpr char kReplayPacketsLane[] = "replay packets";
 // is null without Embree. Single rays against single rays take per round the
 // fastest of our single-ray lanes (the first, kSingleOriginLane and
 // kSingleBvhLane, whose build took bvh_build_s), best
-// mode against best mode the fastest of ours (the fast mode too) over the
-// faster of Embree's two.
+// mode against best mode the fastest of ours (the fast mode and
+// kPacketsBvhLane too) over the faster of Embree's two.
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
                     double pixels, double bvh_build_s, nlohmann::ordered_json* rec);

@@ -132,19 +132,22 @@ check(len(so["T_R_runs"]) == 2 and so["T_R"] > 0 and so["shadow_s"] > 0,
 sb = f["single_bvh"]
 check(len(sb["T_R_runs"]) == 2 and sb["T_R"] > 0 and sb["build_s"] >= 0,
       "the BVH over the leaves timed in the same two rounds, its build recorded")
+pb = f["packets_bvh"]
+check(len(pb["T_R_runs"]) == 2 and pb["T_R"] > 0 and pb["build_s"] == sb["build_s"],
+      "packets through the BVH timed in the same two rounds")
 check(f["single_paired_ratio_runs"] == [e / min(k, s, b) for e, k, s, b in
       zip(fe["embree"]["T_R_runs"], fe["T_R_runs"], so["T_R_runs"], sb["T_R_runs"])],
       "single rays: Embree's over the fastest of ours, paired per round")
-check(f["best_paired_ratio_runs"] == [min(e, p) / min(k, s, b, q) for e, p, k, s, b, q in
+check(f["best_paired_ratio_runs"] == [min(e, p) / min(k, s, b, q, v) for e, p, k, s, b, q, v in
       zip(fe["embree"]["T_R_runs"], f["embree_packets"]["T_R_runs"], fe["T_R_runs"],
-          so["T_R_runs"], sb["T_R_runs"], f["T_R_runs"])],
+          so["T_R_runs"], sb["T_R_runs"], f["T_R_runs"], pb["T_R_runs"])],
       "best mode: the fastest of each side, per round")
 check(rob["single_paired_ratio_runs"] == [e / min(k, s, b) for e, k, s, b in
       zip(rob["T_R_runs"], fe["T_R_runs"], so["T_R_runs"], sb["T_R_runs"])],
       "robust Embree against the fastest of our single rays, paired per round")
-check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, s, b, q) for e, p, k, s, b, q in
+check(rob["best_paired_ratio_runs"] == [min(e, p) / min(k, s, b, q, v) for e, p, k, s, b, q, v in
       zip(rob["T_R_runs"], rob["packets_T_R_runs"], fe["T_R_runs"], so["T_R_runs"],
-          sb["T_R_runs"], f["T_R_runs"])],
+          sb["T_R_runs"], f["T_R_runs"], pb["T_R_runs"])],
       "best mode against best mode, per round")
 check(rob["wrong"]["primary"] == 0 and rob["disagreements"] >= 0, "robust Embree's answers")
 check(0 <= rob["disagreements_at_origin"] <= rob["disagreements"],
@@ -170,7 +173,8 @@ for key, p in (("primary", "camera"), ("shadow", "shadow")):
                             ps["replay_%s_s_runs" % key]))
     packets = ratios(fastest([f["embree_packets"][key + "_s_runs"]],
                              ps["replay_packets_%s_s_runs" % key]),
-                     fastest([f[key + "_s_runs"]], ps["replay_packets_%s_s_runs" % key]))
+                     fastest([f[key + "_s_runs"], pb[key + "_s_runs"]],
+                             ps["replay_packets_%s_s_runs" % key]))
     for name, want in ((p + "_single", single), (p + "_packets", packets)):
         runs = ps[name]["paired_ratio_runs"]
         # On this tiny scene a pass's tracing time may be within the
