@@ -34,7 +34,14 @@
 // 1.021-1.044 times as long, courtyard-1m 1.130, where the shadow pass,
 // the same code on both sides, gave 1.005-1.029 (in-process A/B, 7 paired
 // rounds, the six scenes): the lanes are no longer narrowed on the way
-// down, so each leaf's test and each node's pop serve more of them.
+// down, so each leaf's test and each node's pop serve more of them. A
+// single-ray fallback (Benthin et al. 2012; Embree's hybrid traversal): a
+// lane left alone at an inner node walks its subtree with the single ray's
+// traversal from its best hit so far: camera pass 0.982-1.021, shadow pass
+// 0.948-0.996 in a first process (bunny, city2, lost-empire,
+// hairball-small, courtyard-1m, hairball-1m) but 0.965-1.021 in a second
+// (the same and teapots, rungholt-1m; shadow rays only), up to two lanes
+// no different from one: within the noise, so not kept.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cc/kdtree/leaf_bvh_packet_kernel.cc"
 #ifndef HWY_COMPILE_ALL_ATTAINABLE
