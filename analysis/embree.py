@@ -184,8 +184,9 @@ def time_to_image(r):
     every tracer, its builds after them in rounds of their own (each stops
     on its own time budget), so the best render is taken per render round
     (the fastest of each side's modes: ours are single rays, packets and,
-    where the record has them, the second single-ray mode and the third,
-    the BVH over the leaves, with its build from the tree), then each term is
+    where the record has them, the second single-ray mode and the BVH over
+    the leaves in single rays and in packets, with its build from the
+    tree), then each term is
     the median of its rounds; there is no per-round spread to give."""
     if r is None:
         return None, []
