@@ -35,9 +35,10 @@ namespace hn = hwy::HWY_NAMESPACE;
 // exceeds its upper bound on exit is entered by no lane: the per-lane test
 // runs only for the other slots, and every lane's mask comes out as before.
 // Only for groups whose reciprocals are all finite (a zero direction
-// component makes 0 * inf possible). Camera rays share an origin, so their bounds are tight
-// (lost-empire: 1.6 candidates a node, 1.6 entered); a shadow packet's
-// origins are scattered (hairball-small: 3.2 candidates, 1.3 entered).
+// component makes 0 * inf possible). Camera rays share an origin, so their
+// bounds are tight (lost-empire: 1.6 candidates a node, 1.6 entered); a
+// shadow packet's origins are scattered (hairball-small: 3.2 candidates,
+// 1.3 entered).
 // In-process A/B (the filter on AVX3_DL against none on AVX3, 7 paired
 // rounds, bunny, city2, lost-empire, hairball-small, courtyard-1m, teapots;
 // 2026-12-06): T_R 0.958-0.998 (camera pass 0.918-0.985, shadow
