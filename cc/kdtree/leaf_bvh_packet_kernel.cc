@@ -144,7 +144,6 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
   V org[kV][3], inv[kV][3], tmin[kV], slack[kV];
   Frames<D> frames[kV];
   BestLanes<D> bl[kV];
-  const hn::RebindToUnsigned<D> du;
   for (int v = 0; v < kV; ++v) {
     for (int k = 0; k < 3; ++k) {
       org[v][k] = hn::Load(d, p.org[k] + v * n);
@@ -153,10 +152,8 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
     tmin[v] = hn::Load(d, p.tmin + v * n);
     slack[v] = hn::Load(d, p.slack + v * n);
     frames[v] = Frames<D>(d, p, v * n);
-    bl[v].t = hn::Load(d, p.tmax + v * n);
-    bl[v].u = bl[v].v = hn::Zero(d);
-    bl[v].tri = hn::Set(du, kNoHit);
   }
+  StartBest(d, p, bl);
   int near_row[3], far_row[3];
   for (int k = 0; k < 3; ++k) {
     near_row[k] = g.negative[k] ? 3 + k : k;
@@ -234,21 +231,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
     // best hit plus slack (any hit: lanes with a hit are done).
     for (;;) {
       if (top == 0) {
-        HWY_ALIGN float t[kLanes], u[kLanes], w[kLanes];
-        HWY_ALIGN uint32_t tri[kLanes];
-        for (int v = 0; v < kV; ++v) {
-          hn::Store(bl[v].t, d, t + v * n);
-          hn::Store(bl[v].u, d, u + v * n);
-          hn::Store(bl[v].v, d, w + v * n);
-          hn::Store(bl[v].tri, du, tri + v * n);
-        }
-        for (uint32_t m = found; m != 0; m &= m - 1) {
-          const int i = __builtin_ctz(m);
-          best[i].tri = tri[i];
-          best[i].t = t[i];
-          best[i].u = u[i];
-          best[i].v = w[i];
-        }
+        WriteBest(d, bl, found, best);
         return;
       }
       --top;

@@ -50,6 +50,42 @@ struct BestLanes {
   hn::Vec<hn::RebindToUnsigned<D>> tri;
 };
 
+// Each lane's best hit before any leaf, in the kV vectors of a group's
+// kLanes lanes: no triangle yet, at the ray's tmax.
+template <int kV, class D>
+HWY_INLINE void StartBest(D d, const PacketRays& p, BestLanes<D> (&bl)[kV]) {
+  constexpr int n = static_cast<int>(hn::MaxLanes(D()));
+  const hn::RebindToUnsigned<D> du;
+  for (int v = 0; v < kV; ++v) {
+    bl[v].t = hn::Load(d, p.tmax + v * n);
+    bl[v].u = bl[v].v = hn::Zero(d);
+    bl[v].tri = hn::Set(du, kNoHit);
+  }
+}
+
+// The lanes of `found` (bits) get their best hit in best[] (kLanes Hits);
+// the others keep theirs.
+template <int kV, class D>
+HWY_INLINE void WriteBest(D d, const BestLanes<D> (&bl)[kV], uint32_t found, Hit* best) {
+  constexpr int n = static_cast<int>(hn::MaxLanes(D()));
+  const hn::RebindToUnsigned<D> du;
+  HWY_ALIGN float t[kLanes], u[kLanes], w[kLanes];
+  HWY_ALIGN uint32_t tri[kLanes];
+  for (int v = 0; v < kV; ++v) {
+    hn::Store(bl[v].t, d, t + v * n);
+    hn::Store(bl[v].u, d, u + v * n);
+    hn::Store(bl[v].v, d, w + v * n);
+    hn::Store(bl[v].tri, du, tri + v * n);
+  }
+  for (uint32_t m = found; m != 0; m &= m - 1) {
+    const int i = __builtin_ctz(m);
+    best[i].tri = tri[i];
+    best[i].t = t[i];
+    best[i].u = u[i];
+    best[i].v = w[i];
+  }
+}
+
 // The hits `hits` (lanes of the vector at `base`) at t, u, v on triangles
 // tri: closest hit, those Closer than the lane's best (ray.h: smaller t, at
 // equal t the smaller index); any hit, every one (the lane is done).

@@ -147,31 +147,10 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
   // camera pass 0.982-0.999 of the time, against a control of 0.992-1.012;
   // the whole hit in vectors then 0.950-0.997 of that on eight scenes).
   uint32_t found = 0, index = 0;
-  const hn::RebindToUnsigned<D> du;
   BestLanes<D> bl[kV];
-  for (int v = 0; v < kV; ++v) {
-    bl[v].t = hn::Load(d, p.tmax + v * n);
-    bl[v].u = bl[v].v = hn::Zero(d);
-    bl[v].tri = hn::Set(du, kNoHit);
-  }
+  StartBest(d, p, bl);
   // The lanes with a hit get it in best[] (the others keep their miss).
-  const auto finish = [&]() {
-    HWY_ALIGN float t[kLanes], u[kLanes], w[kLanes];
-    HWY_ALIGN uint32_t tri[kLanes];
-    for (int v = 0; v < kV; ++v) {
-      hn::Store(bl[v].t, d, t + v * n);
-      hn::Store(bl[v].u, d, u + v * n);
-      hn::Store(bl[v].v, d, w + v * n);
-      hn::Store(bl[v].tri, du, tri + v * n);
-    }
-    for (uint32_t m = found; m != 0; m &= m - 1) {
-      const int i = __builtin_ctz(m);
-      best[i].tri = tri[i];
-      best[i].t = t[i];
-      best[i].u = u[i];
-      best[i].v = w[i];
-    }
-  };
+  const auto finish = [&]() { WriteBest(d, bl, found, best); };
   const KdNode* nodes = tree.nodes.data();
   Stack stack;
   int top = 0;
