@@ -9,11 +9,13 @@ tracers in one process, this pairs whole binaries.)
 
 Each round runs every binary once per scene, one process at a time, the
 order rotated per round (kdrt --repeats 3 --fast_render --embree off, so a
-record holds T_B, T_R and the fast mode's T_R, each the median of its
-process's runs); round 0 is a warm-up and is dropped. Per scene and binary
-after the first, it prints the median over the rounds of (this binary's time
-/ the first's in the same round) with the min..max, for T_B, T_R and the fast
-mode. Give a copy of the old binary as the
+record holds T_B, T_R, the fast mode's T_R and that of its packets through
+the BVH over the tree's leaves, fast_render.packets_bvh, each the median of
+its process's runs); round 0 is a warm-up and is dropped. Per scene and
+binary after the first, it prints the median over the rounds of (this
+binary's time / the first's in the same round) with the min..max, for T_B,
+T_R, the fast mode and its BVH packets ("n/a" where a binary's records lack
+them). Give a copy of the old binary as the
 last one: its ratios are the control, the noise a real change must clear.
 Every record goes to --out (one JSON line per run, with the image hash: the
 binaries must render the same image).
@@ -29,18 +31,31 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_matrix  # noqa: E402  (run_kdrt: one kdrt process, its record)
 
 
-COLUMNS = ("T_B", "T_R", "fast")
+COLUMNS = ("T_B", "T_R", "fast", "fast_bvh")
 
 
 def ratios(times, reference):
     """Per round, time / the reference's time in that round, for each column
-    (T_B, T_R and the fast mode): [(t_b ratio, t_r ratio, fast ratio)]."""
-    return [tuple(a / b for a, b in zip(t, r)) for t, r in zip(times, reference)]
+    (T_B, T_R, the fast mode, ...): [(t_b ratio, t_r ratio, ...)]; None
+    where either time is None."""
+    return [tuple(None if a is None or b is None else a / b for a, b in zip(t, r))
+            for t, r in zip(times, reference)]
 
 
 def summary(pairs):
-    """(median, min, max) of each column of ratios()."""
-    return [(statistics.median(c), min(c), max(c)) for c in zip(*pairs)]
+    """(median, min, max) of each column of ratios(), over its rounds with a
+    ratio; None for a column with none."""
+    out = []
+    for c in zip(*pairs):
+        c = [x for x in c if x is not None]
+        out.append((statistics.median(c), min(c), max(c)) if c else None)
+    return out
+
+
+def row(rec):
+    """A record's times, in COLUMNS' order (None: not in the record)."""
+    fast = rec["fast_render"]
+    return (rec["T_B"], rec["T_R"], fast["T_R"], fast.get("packets_bvh", {}).get("T_R"))
 
 
 def run(binary, scene, preset):
@@ -69,17 +84,18 @@ def main(argv=None):
                 for b in bins[r % len(bins):] + bins[:r % len(bins)]:
                     rec = run(b, s, args.preset)
                     images[s].add(rec["image_fnv64"])
-                    row = (rec["T_B"], rec["T_R"], rec["fast_render"]["T_R"])
+                    times_now = row(rec)
                     log.write(json.dumps({"round": r, "scene": s, "binary": b,
-                                          **dict(zip(COLUMNS, row)),
+                                          **dict(zip(COLUMNS, times_now)),
                                           "image_fnv64": rec["image_fnv64"]}) + "\n")
                     if r > 0:
-                        times[(s, b)].append(row)
+                        times[(s, b)].append(times_now)
     for s in scenes:
         for b in bins[1:]:
             cols = summary(ratios(times[(s, b)], times[(s, bins[0])]))
             print("%s %s %s" % (s, b, " | ".join(
-                "%s %.3f [%.3f..%.3f]" % (name, *c) for name, c in zip(COLUMNS, cols))))
+                "%s n/a" % name if c is None else "%s %.3f [%.3f..%.3f]" % (name, *c)
+                for name, c in zip(COLUMNS, cols))))
         if len(images[s]) != 1:
             print("%s: the binaries rendered %d different images" % (s, len(images[s])))
     return 0 if all(len(v) == 1 for v in images.values()) else 1
