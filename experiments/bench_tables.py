@@ -386,7 +386,9 @@ def packets_summary(records):
     closest hit for the primary rays, any hit for the shadow rays): the
     packets that reached the tree, per packet its steps (inner nodes, leaves,
     vector triangle tests) and the lanes each carried, and per ray N_TR and
-    N_IT, which every lane reproduces from its single ray."""
+    N_IT, which every lane of the kd-tree's packets reproduces from its
+    single ray (kd_bvh_packet: the BVH's nodes as inner steps and N_TR, per
+    lane)."""
     out = ["| scene | variant | kernel | query | packets | inner steps / packet "
            "| leaf steps / packet | triangle steps / packet | lanes per inner step "
            "| lanes per triangle step | N_TR / ray | N_IT / ray |",

@@ -43,20 +43,21 @@ Json PacketCountsJson(const PacketCounters& c) {
 }
 
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
-                                  const RenderOptions& base, const RenderVariant& v) {
+                                  const RenderOptions& base, const RenderVariant& v, bool bvh) {
   std::unique_ptr<ScopedPacketKernelTarget> target;
   if (!v.kernel.empty()) {
     target = std::make_unique<ScopedPacketKernelTarget>(v.kernel);
     if (!target->ok()) return absl::InvalidArgumentError(absl::StrCat("kernel target ", v.kernel));
   }
-  KdTreeTracer tracer(tree);
+  const std::unique_ptr<KdTreeTracer> tracer =
+      bvh ? std::make_unique<KdTreeBvhTracer>(tree) : std::make_unique<KdTreeTracer>(tree);
   PacketCounters closest, any;
-  tracer.CountPackets(&closest, &any);
+  tracer->CountPackets(&closest, &any);
   RenderOptions o = base;
   o.threads = 1;
   o.packets = true;
   o.skip_origin = v.skip_origin;
-  Render(soup, tracer, view, o);
+  Render(soup, *tracer, view, o);
   return Json{{"kernel", PacketKernelTarget()},
               {"closest", PacketCountsJson(closest)},
               {"any", PacketCountsJson(any)}};

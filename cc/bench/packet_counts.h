@@ -1,10 +1,12 @@
-// What the packet kernel does in a render: render_bench's record
-// packet_counts, one untimed render per packet variant. Per query (closest
-// hit: primary rays; any hit: shadow and AO rays), the counters of
-// cc/kdtree/ray_packet.h and what they mean per packet: the kernel's steps
-// (inner nodes, leaves, vector triangle tests) and how many lanes each step
-// carries, and per ray the single-ray statistics (N_TR, N_IT), which each
-// lane reproduces.
+// What the packet kernels do in a render: render_bench's record
+// packet_counts, one untimed render per packet variant, through the kd-tree
+// (kd_packet, kd_packet_origin) or the BVH over its leaves (kd_bvh_packet).
+// Per query (closest hit: primary rays; any hit: shadow and AO rays), the
+// counters of cc/kdtree/ray_packet.h and what they mean per packet: the
+// kernel's steps (inner nodes, leaves, vector triangle tests) and how many
+// lanes each step carries, and per ray N_TR and N_IT: through the kd-tree,
+// the single-ray statistics, which each lane reproduces; through the BVH,
+// its nodes and the triangle tests per lane.
 #ifndef KDTREE_CC_BENCH_PACKET_COUNTS_H_
 #define KDTREE_CC_BENCH_PACKET_COUNTS_H_
 
@@ -24,10 +26,13 @@ namespace bench {
 Json PacketCountsJson(const PacketCounters& c);
 
 // One render of `tree` with one thread and v's modes (v.packets must be set;
-// v.kernel: the packet kernel's target, as timed): {"kernel", "closest",
-// "any"}. Error: a kernel target this machine cannot run.
+// v.kernel: the packet kernel's target, as timed), the packets through the
+// kd-tree or, with `bvh`, through the BVH over its leaves (leaf_bvh.h, built
+// again for the count; inner steps are then the BVH's nodes): {"kernel",
+// "closest", "any"}. Error: a kernel target this machine cannot run.
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
-                                  const RenderOptions& base, const RenderVariant& v);
+                                  const RenderOptions& base, const RenderVariant& v,
+                                  bool bvh = false);
 
 }  // namespace bench
 }  // namespace kdtree

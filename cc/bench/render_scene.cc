@@ -99,10 +99,12 @@ absl::StatusOr<Validation> Validate(const Scene& s, const RenderOptions& ropt,
     if (!st.ok()) return st;
     v.variants[e.name] = bad;
   }
-  // What the packet kernel does: the kd-tree's packet variants.
+  // What the packet kernels do: the packet variants through the kd-tree and
+  // through the BVH over its leaves.
   for (const Entry& e : s.variants) {
-    if (!e.packets || e.tracer != &s.kd()) continue;
-    absl::StatusOr<Json> counts = CountPackets(s.soup, s.trees->tree, s.view, ropt, e);
+    const bool bvh = e.tracer == s.trees->bvh.get();
+    if (!e.packets || (e.tracer != &s.kd() && !bvh)) continue;
+    absl::StatusOr<Json> counts = CountPackets(s.soup, s.trees->tree, s.view, ropt, e, bvh);
     if (!counts.ok()) return counts.status();
     v.packet_counts[e.name] = *std::move(counts);
   }

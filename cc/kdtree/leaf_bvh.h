@@ -55,7 +55,16 @@
 //  - nodes of four children (SSE, 128 bytes): renders 1.10-1.17 times as
 //    long;
 //  - a leaf's packets as leaves of their own, each with its box: 0.99-1.19
-//    (bunny, teapots, city2);
+//    (bunny, teapots, city2); for the packets (kd_bvh_packet, a second tree
+//    through --envs, 7 paired rounds, bunny, city2, courtyard-1m,
+//    hairball-small, hairball-1m, lost-empire, morse-indoor; 2026-12-07),
+//    a leaf of more than one packet (or three) under a node of its
+//    packets, each box its triangles' boxes clipped to the cell: renders
+//    1.00-1.19 times as long (4 times the nodes), and with the leaf's
+//    triangles first ordered by a median split of their centroids, so
+//    that a packet's four lie together, 1.00-1.19 too: the triangles of a
+//    kd leaf cross one small cell, so any four of them cover most of it
+//    and their box culls few lanes, while each added node costs a step;
 //  - the kd-tree's front-to-back order stored per node and direction octant
 //    (a permutation of the slots), the hit children compressed onto the
 //    stack in that order, without a branch or a sort: renders 1.04-1.06
@@ -63,14 +72,18 @@
 //    every node's dependent chain;
 //  - any-hit children in slot order instead of farthest first: shadow pass
 //    0.96-1.03;
-//  - prefetching the children pushed on the stack: within 2 %.
+//  - prefetching the children pushed on the stack: within 2 %;
 //  - a tree tuned for this traversal: sah-packet's K_T (45, tuned for the
 //    kd-tree's walk) lowered to 20 or 30 (render_bench --envs with
 //    --env_variant kd_bvh, 5 paired rounds, 8 scenes): renders 0.977-1.048
 //    and 0.971-1.017 times as long as K_T 45's, the same tree twice
 //    0.995-1.011; traced as kd_bvh_packet (six scenes, 7 paired rounds),
 //    K_T 20 0.973-1.122, 30 0.984-1.051, 60 0.990-1.031 and 90
-//    0.984-1.078, the same tree twice 1.001-1.010.
+//    0.984-1.078, the same tree twice 1.001-1.010;
+//  - a tree with the per-triangle leaf cost (sahPacket 1) instead of
+//    per packet of four, K_T 20, 45 or 80, traced as kd_bvh_packet
+//    (--envs, 5 paired rounds, the seven scenes above; 2026-12-07): renders
+//    0.98-1.42, 0.99-1.15 and 0.97-1.05 times as long as sah-packet's.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
@@ -82,6 +95,8 @@
 #include "cc/kdtree/tree.h"
 
 namespace kdtree {
+
+struct PacketCounters;  // ray_packet.h
 
 inline constexpr int kBvhWidth = 8;
 
@@ -117,11 +132,14 @@ bool OccludedLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray,
 
 // The same for packets of n <= 16 rays, one ray per vector lane
 // (leaf_bvh_packet_kernel.cc): each ray's answer is the single ray's, bit
-// for bit. origin_tris may be null (no ray has one).
+// for bit. origin_tris may be null (no ray has one). `counters` (may be
+// null) gathers what the kernel did, as the kd-tree's packet kernel counts
+// it (ray_packet.h), its inner steps the BVH's nodes.
 void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                            Hit* hits);
+                            Hit* hits, PacketCounters* counters = nullptr);
 void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                           const uint32_t* origin_tris, bool* occluded);
+                           const uint32_t* origin_tris, bool* occluded,
+                           PacketCounters* counters = nullptr);
 
 }  // namespace kdtree
 

@@ -41,7 +41,35 @@
 // 0.948-0.996 in a first process (bunny, city2, lost-empire,
 // hairball-small, courtyard-1m, hairball-1m) but 0.965-1.021 in a second
 // (the same and teapots, rungholt-1m; shadow rays only), up to two lanes
-// no different from one: within the noise, so not kept.
+// no different from one: within the noise, so not kept. Embree's hybrid
+// threshold (a shadow packet of 16 goes one ray at a time once 14 lanes or
+// fewer are left) in the same A/B (city2, morse-indoor, lost-empire,
+// hairball-small, hairball-1m, courtyard-1m, bunny; 2026-12-07): with up to
+// 3, 8 or all 16 lanes walking alone, the shadow pass took 0.99-1.02,
+// 1.01-1.09 and 1.23-1.86 times as long, and 0.92, 0.91 and 0.90 on
+// hairball-1m alone: our single ray costs about twice a lane of the
+// packet. Also not kept (same A/B): the leaf where the thread's last shadow
+// packet found an occluder tested first for the lanes entering its box
+// (the "last occluder of the neighbouring ray"): shadow pass
+// 0.997-1.048 (fforest too), no scene faster; for lanes sharing their
+// origin, the planes' offsets from it taken once in scalars (one multiply
+// a lane instead of a subtract and a multiply): camera pass 1.008-1.040;
+// and a box per leaf packet (24 bytes) against which a leaf's lanes were
+// tested before its four triangles: it skipped 28-49 % of the packets and
+// left 4-7 of a packet's 13 lanes, yet renders took 1.00-1.13 times as
+// long.
+//
+// Where the time goes (rdtsc around the phases, one thread, sah-packet,
+// 2026-12-07; TSC ticks): 59-72 % of a render's camera packets reach no
+// node (their rays miss the scene's box: 0.28-0.41 groups a packet on
+// morse-indoor, city2, lost-empire, bunny, hairball-1m), yet each pays its
+// set-up, about 130 ticks, 100 of them LoadLanes' eight 16-wide gathers (a
+// microbenchmark on rays in L1: the gathers 100, a transposing load of the
+// same rays 13, SetUpLanes 29; Embree's packets pay the same gathers in
+// embree_tracer.cc's FillRay16). In a live camera group the leaves take
+// 59-70 % of the kernel's time: a leaf reached costs 480-750 ticks, for
+// 16-32 triangles (2.8-6.2 leaf packets at 14 lanes a triangle step, or
+// 4-8 packets at about 4 rays in TestLeafFew), a node about 100-110.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "cc/kdtree/leaf_bvh_packet_kernel.cc"
 #ifndef HWY_COMPILE_ALL_ATTAINABLE
@@ -134,10 +162,11 @@ HWY_INLINE uint32_t EnterLanes(D d, const LeafBvhNode& node, int s, const int ne
 
 // The group's lanes in kV vectors; the descent, the leaf and the pop share
 // the lanes' masks and best hits (one function, as TraceLanes).
-template <bool kAnyHit, int kV, class D>
+template <bool kAnyHit, bool kCount, int kV, class D>
 HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
                               const Group& g, uint32_t lanes, const SlotFilter& filter0,
-                              Hit* best) {
+                              Hit* best, PacketCounters* counters) {
+  PacketCounters* const c = kCount ? counters : nullptr;  // null: no counting code
   using V = hn::Vec<D>;
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
   static_assert(kV * n == kLanes, "the group's lanes in kV vectors");
@@ -174,6 +203,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
   for (;;) {
     while (!(child & LeafBvhNode::kLeafBit)) {
       const LeafBvhNode& node = nodes[child];
+      if (kCount) CountStep(lanes, &c->inner_steps, &c->lanes.inner_visits);
       HWY_ALIGN float t_near[kBvhWidth][kLanes];
       uint32_t hit[kBvhWidth];
       int slots[kBvhWidth], count = 0;
@@ -209,6 +239,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
           const int s = slots[i];
           stack.child[top] = node.child[s];
           stack.lanes[top] = hit[s];
+          if (kCount) ++c->pushes;
           for (int v = 0; v < kV; ++v) {
             hn::Store(hn::Load(d, t_near[s] + v * n), d, stack.t_near[top] + v * n);
           }
@@ -220,9 +251,10 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
     }
     {
       const uint32_t found_before = found;
+      if (kCount) CountStep(lanes, &c->leaf_steps, &c->lanes.leaf_visits);
       for (int v = 0; v < kV; ++v) {
         TestLeafVector<kAnyHit>(d, tree, p, frames[v], g, v * n, child & ~LeafBvhNode::kLeafBit,
-                                &lanes, &found, &bl[v], nullptr);
+                                &lanes, &found, &bl[v], c);
       }
       if (!kAnyHit && found != found_before) filter.tfar_hi = far_bound();
     }
@@ -252,16 +284,26 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
   }
 }
 
-void TraceBvhGroupImpl(const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
-                       const Group& g, bool any_hit, Hit* best) {
+template <bool kCount>
+HWY_INLINE void TraceBvhGroupFor(const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+                                 const Group& g, bool any_hit, Hit* best, PacketCounters* c) {
   const hn::ScalableTag<float> d;
   constexpr int kV = static_cast<int>(kLanes / hn::MaxLanes(d));
-  if (g.lanes == 0) return;
   const SlotFilter filter = MakeSlotFilter(p, g.lanes);
   if (any_hit) {
-    TraceBvhLanes<true, kV>(d, tree, bvh, p, g, g.lanes, filter, best);
+    TraceBvhLanes<true, kCount, kV>(d, tree, bvh, p, g, g.lanes, filter, best, c);
   } else {
-    TraceBvhLanes<false, kV>(d, tree, bvh, p, g, g.lanes, filter, best);
+    TraceBvhLanes<false, kCount, kV>(d, tree, bvh, p, g, g.lanes, filter, best, c);
+  }
+}
+
+void TraceBvhGroupImpl(const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+                       const Group& g, bool any_hit, Hit* best, PacketCounters* counters) {
+  if (g.lanes == 0) return;
+  if (counters != nullptr) {
+    TraceBvhGroupFor<true>(tree, bvh, p, g, any_hit, best, counters);
+  } else {
+    TraceBvhGroupFor<false>(tree, bvh, p, g, any_hit, best, nullptr);
   }
 }
 
@@ -278,25 +320,32 @@ HWY_EXPORT(TraceBvhGroupImpl);
 
 namespace {
 
-// Each live lane's query through `bvh`, group by group; best[i].t must hold
-// ray i's tmax on entry for the live lanes.
+// Each live lane's query through `bvh`, group by group (counted in
+// `counters` if not null, as ray_packet.cc's TracePacket counts).
 void TraceBvhPacket(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                    const uint32_t* origins, bool any_hit, Hit (&best)[kRayPacketSize]) {
+                    const uint32_t* origins, bool any_hit, Hit (&best)[kRayPacketSize],
+                    PacketCounters* counters) {
   packet_internal::PacketRays p;
   packet_internal::PreparePacket(tree, rays, n, origins, &p);
   for (int i = 0; i < n; ++i) {
     if (p.live & (1u << i)) best[i].t = p.tmax[i];
   }
+  if (counters != nullptr) {
+    counters->lanes.rays += static_cast<uint64_t>(n);
+    counters->packets += p.live != 0;
+  }
   for (uint32_t rest = p.live; rest != 0;) {
     const packet_internal::Group g = packet_internal::NextGroup(p, &rest);
-    HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(tree, bvh, p, g, any_hit, best);
+    if (counters != nullptr) ++counters->groups;
+    HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(tree, bvh, p, g, any_hit, best,
+                                                             counters);
   }
 }
 
 }  // namespace
 
 void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                            Hit* hits) {
+                            Hit* hits, PacketCounters* counters) {
   if (bvh.nodes.empty()) {
     for (int i = 0; i < n; ++i) hits[i] = IntersectLeafBvh(tree, bvh, rays[i]);
     return;
@@ -304,7 +353,7 @@ void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* r
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = kNoHit;
   Hit best[kRayPacketSize];
-  TraceBvhPacket(tree, bvh, rays, n, origins, false, best);
+  TraceBvhPacket(tree, bvh, rays, n, origins, false, best, counters);
   for (int i = 0; i < n; ++i) {
     hits[i] = best[i];
     if (!hits[i].hit()) hits[i].t = INFINITY;
@@ -312,7 +361,8 @@ void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* r
 }
 
 void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                           const uint32_t* origin_tris, bool* occluded) {
+                           const uint32_t* origin_tris, bool* occluded,
+                           PacketCounters* counters) {
   if (bvh.nodes.empty()) {
     for (int i = 0; i < n; ++i) occluded[i] = false;
     return;
@@ -320,7 +370,7 @@ void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* ra
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = origin_tris != nullptr ? origin_tris[i] : kNoHit;
   Hit best[kRayPacketSize];
-  TraceBvhPacket(tree, bvh, rays, n, origins, true, best);
+  TraceBvhPacket(tree, bvh, rays, n, origins, true, best, counters);
   for (int i = 0; i < n; ++i) occluded[i] = best[i].hit();
 }
 

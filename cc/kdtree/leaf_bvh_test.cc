@@ -161,6 +161,47 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
   }
 }
 
+// Counting (render_bench's packet_counts) leaves every answer as it is, and
+// the counts add up: every ray counted, a node or leaf step carrying 1 to 16
+// lanes, each lane's triangle tests within its leaves' steps.
+TEST(LeafBvh, PacketCountsChangeNoAnswer) {
+  const TriangleSoup soup = MakeSoup("sphere");
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
+  ASSERT_TRUE(tree.ok());
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  std::vector<Ray> rays = testing::CameraRays(soup, 64, 64);
+  for (const Ray& r : testing::RandomRays(soup, 4000, 17)) rays.push_back(r);
+  PacketCounters closest, any;
+  int bad = 0;
+  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
+    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
+    Hit hits[kRayPacketSize], counted_hits[kRayPacketSize];
+    bool occluded[kRayPacketSize], counted_occluded[kRayPacketSize];
+    IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, hits);
+    IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, counted_hits, &closest);
+    OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, occluded);
+    OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, counted_occluded, &any);
+    for (int l = 0; l < n; ++l) {
+      bad += !testing::BitwiseSameHit(hits[l], counted_hits[l]) +
+             (occluded[l] != counted_occluded[l]);
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  for (const PacketCounters* c : {&closest, &any}) {
+    EXPECT_EQ(c->lanes.rays, rays.size());
+    EXPECT_GT(c->packets, 0u);
+    EXPECT_GE(c->groups, c->packets);
+    EXPECT_GT(c->inner_steps, 0u);
+    EXPECT_GT(c->leaf_steps, 0u);
+    EXPECT_GE(c->lanes.inner_visits, c->inner_steps);
+    EXPECT_LE(c->lanes.inner_visits, kRayPacketSize * c->inner_steps);
+    EXPECT_GE(c->lanes.leaf_visits, c->leaf_steps);
+    EXPECT_LE(c->lanes.leaf_visits, kRayPacketSize * c->leaf_steps);
+    EXPECT_GT(c->triangle_steps, 0u);
+    EXPECT_GE(c->lanes.triangle_tests, c->triangle_steps);
+  }
+}
+
 // The packet kernel's slot filter (leaf_bvh_packet_kernel.cc SlotFilter)
 // bounds each lane's widened slab distance by widening a bound on it; that
 // is exact only if the widening t -/+ fl(|t| 4 u) never decreases as t

@@ -39,6 +39,10 @@ class KdTreeTracer : public Tracer {
     any_ = any;
   }
 
+ protected:
+  PacketCounters* closest_counters() const { return closest_; }
+  PacketCounters* any_counters() const { return any_; }
+
  private:
   const KdTree& tree_;
   TraversalOptions options_;
@@ -47,7 +51,8 @@ class KdTreeTracer : public Tracer {
 };
 
 // The kd-tree's leaves under a BVH (cc/kdtree/leaf_bvh.h), single rays and
-// packets (the same answers as KdTreeTracer's).
+// packets (the same answers as KdTreeTracer's; CountPackets counts the
+// packets through the BVH).
 // Secondary rays that name their origin triangle leave it untested, as in
 // KdTreeTracer::Occluded. `tree` must outlive it.
 class KdTreeBvhTracer : public KdTreeTracer {
@@ -62,11 +67,11 @@ class KdTreeBvhTracer : public KdTreeTracer {
   }
   // Packets through the same BVH (leaf_bvh_packet_kernel.cc).
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
-    IntersectPacketLeafBvh(tree_, bvh_, rays, n, hits);
+    IntersectPacketLeafBvh(tree_, bvh_, rays, n, hits, closest_counters());
   }
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override {
-    OccludedPacketLeafBvh(tree_, bvh_, rays, n, origin_tris, occluded);
+    OccludedPacketLeafBvh(tree_, bvh_, rays, n, origin_tris, occluded, any_counters());
   }
   const LeafBvh& bvh() const { return bvh_; }
 
