@@ -60,8 +60,8 @@
 // long.
 //
 // Where the time goes (rdtsc around the phases, one thread, sah-packet,
-// 2026-12-07; TSC ticks): 59-72 % of a render's camera packets reach no
-// node (their rays miss the scene's box: 0.28-0.41 groups a packet on
+// 2026-12-07; TSC ticks): 57-72 % of a render's camera packets reach no
+// node (their rays miss the scene's box: 0.28-0.43 groups a packet on
 // morse-indoor, city2, lost-empire, bunny, hairball-1m), yet each pays its
 // set-up, about 130 ticks, 100 of them LoadLanes' eight 16-wide gathers (a
 // microbenchmark on rays in L1: the gathers 100, a transposing load of the
