@@ -48,12 +48,13 @@
 // 3, 8 or all 16 lanes walking alone, the shadow pass took 0.99-1.02,
 // 1.01-1.09 and 1.23-1.86 times as long, and 0.92, 0.91 and 0.90 on
 // hairball-1m alone: a lane walking alone costs 1.2 to 1.9 times what it
-// costs in the packet. Also not kept (same A/B): the leaf where the thread's last shadow
-// packet found an occluder tested first for the lanes entering its box
-// (the "last occluder of the neighbouring ray"): shadow pass
-// 0.997-1.048 (fforest too), no scene faster; for lanes sharing their
-// origin, the planes' offsets from it taken once in scalars (one multiply
-// a lane instead of a subtract and a multiply): camera pass 1.008-1.040;
+// costs in the packet. Also not kept (same A/B): the leaf where the
+// thread's last shadow packet found an occluder tested first for the lanes
+// entering its box (the "last occluder of the neighbouring ray"):
+// shadow pass 0.997-1.048 (fforest too), no scene faster; for lanes
+// sharing their origin, the planes' offsets from it taken once in scalars
+// (one multiply a lane instead of a subtract and a multiply): camera pass
+// 1.008-1.040;
 // and a box per leaf packet (24 bytes) against which a leaf's lanes were
 // tested before its four triangles: it skipped 28-49 % of the packets and
 // left 4-7 of a packet's 13 lanes, yet renders took 1.00-1.13 times as
