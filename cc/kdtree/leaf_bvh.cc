@@ -3,6 +3,7 @@
 // the kd hierarchy collapsed into nodes of up to eight children.
 #include "cc/kdtree/leaf_bvh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -100,14 +101,29 @@ class Builder {
       const KdNode& n = tree_.nodes[slots[s]];
       const uint32_t child = n.is_leaf() ? (LeafBvhNode::kLeafBit | n.index()) : Emit(slots[s]);
       SetSlot(me, static_cast<int>(s), child, box_[slots[s]]);
+      if (n.is_leaf()) {
+        out_->nodes[me].packets[s] = static_cast<uint8_t>(std::min(PacketCount(n.index()), 255u));
+      }
     }
     return me;
+  }
+
+  // The number of packets of the leaf whose first packet is `first`.
+  uint32_t PacketCount(uint32_t first) const {
+    uint32_t count = 1;
+    for (const float* p = tree_.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;;
+         p += kPacketFloats, ++count) {
+      uint32_t id0;
+      std::memcpy(&id0, p + kPacketIds, sizeof(id0));
+      if (id0 & kLastPacket) return count;
+    }
   }
 
   // (out_->nodes may have grown since `me` was made: indexed, not held.)
   void SetSlot(uint32_t me, int s, uint32_t child, const AABB& b) {
     LeafBvhNode& node = out_->nodes[me];
     node.child[s] = child;
+    node.packets[s] = 0;
     for (int k = 0; k < 3; ++k) {
       node.box[k][s] = b.lo[k];
       node.box[3 + k][s] = b.hi[k];

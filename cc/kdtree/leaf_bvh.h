@@ -109,7 +109,12 @@ struct alignas(64) LeafBvhNode {
   // Per slot: a node's index, kLeafBit | the leaf's first packet in
   // KdTree::leaf_soa, or kNone.
   uint32_t child[kBvhWidth];
+  // Per slot holding a leaf: its number of packets, up to 255 (0 for other
+  // slots), for the packet kernel's prefetch; in the node's padding (it
+  // stays 256 bytes).
+  uint8_t packets[kBvhWidth];
 };
+static_assert(sizeof(LeafBvhNode) == 256, "four cache lines a node");
 
 struct LeafBvh {
   // nodes[0] is the root; empty when the tree has no triangle in a leaf.

@@ -116,7 +116,30 @@ struct BvhStack {
 // city2, lost-empire and hairball-small (camera 0.981-0.992); the control,
 // the same code on both, T_R 0.983-1.017 (camera 0.986-1.004). A fourth
 // line (a node's child indices) as well: T_R 0.979-1.008, no gain.
-HWY_INLINE void PrefetchChild(const KdTree& tree, const LeafBvhNode* nodes, uint32_t child) {
+//
+// For a closest hit, a leaf's every line instead (its packets, up to eight;
+// LeafBvhNode::packets): a camera packet's leaves hold 16-32 triangles, 10
+// to 20 lines, most of which it tests. In-process A/B (every line on
+// AVX3_DL, three on AVX3, 7 paired rounds, three processes; 2026-12-07):
+// camera pass 0.942, 0.965 and 0.943 on courtyard-1m, 0.953, 0.967 and
+// 0.976 on hairball-1m, 0.977 on rungholt-1m, T_R 0.967-0.990 there; on
+// city2, morse-indoor, lost-empire, hairball-small, bunny and plant-1m
+// 0.96-1.02, the control's noise. For any-hit queries it was not kept: the
+// shadow pass took 0.98-1.03 times as long (a shadow ray often stops
+// before the leaf's end).
+template <bool kAnyHit>
+HWY_INLINE void PrefetchChild(const KdTree& tree, const LeafBvhNode* nodes, uint32_t child,
+                              int packets) {
+  if (!kAnyHit && (child & LeafBvhNode::kLeafBit)) {
+    const uintptr_t q = reinterpret_cast<uintptr_t>(
+        tree.leaf_soa.data() +
+        static_cast<size_t>(child & ~LeafBvhNode::kLeafBit) * kPacketFloats);
+    const uintptr_t end = q + std::min(packets, 8) * kPacketFloats * sizeof(float);
+    for (uintptr_t a = q & ~uintptr_t{63}; a < end; a += 64) {
+      __builtin_prefetch(reinterpret_cast<const void*>(a));
+    }
+    return;
+  }
   const char* q =
       (child & LeafBvhNode::kLeafBit)
           ? reinterpret_cast<const char*>(tree.leaf_soa.data() +
@@ -217,7 +240,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
                                              bl, t_near[s]);
         m &= lanes;
         if (m == 0) continue;
-        PrefetchChild(tree, nodes, node.child[s]);
+        PrefetchChild<kAnyHit>(tree, nodes, node.child[s], node.packets[s]);
         hit[s] = m;
         slots[count++] = s;
       }

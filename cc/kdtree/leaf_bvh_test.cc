@@ -18,6 +18,7 @@
 #include "cc/geometry/spawn.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/test_scenes.h"
 #include "cc/kdtree/traversal.h"
@@ -127,6 +128,22 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   EXPECT_EQ(any, 0);
   EXPECT_EQ(shadow, 0);
   EXPECT_EQ(packets, 0);
+  // Each leaf slot's packet count (for the prefetch), 0 elsewhere.
+  int bad_counts = 0;
+  for (const LeafBvhNode& node : bvh.nodes) {
+    for (int s = 0; s < kBvhWidth; ++s) {
+      uint32_t want = 0;
+      if (node.child[s] != LeafBvhNode::kNone && (node.child[s] & LeafBvhNode::kLeafBit)) {
+        const float* p = tree->leaf_soa.data() +
+                         static_cast<size_t>(node.child[s] & ~LeafBvhNode::kLeafBit) * kPacketFloats;
+        for (uint32_t id0 = 0; !(id0 & kLastPacket); p += kPacketFloats, ++want) {
+          std::memcpy(&id0, p + kPacketIds, sizeof(id0));
+        }
+      }
+      bad_counts += node.packets[s] != std::min(want, 255u);
+    }
+  }
+  EXPECT_EQ(bad_counts, 0);
   EXPECT_GT(hits, static_cast<int>(rays.size() / 40));
   std::printf("%s/%s: %zu rays, %d hits, %d shadow rays blocked, %zu nodes\n", scene.c_str(),
               preset.c_str(), rays.size(), hits, shadows, bvh.nodes.size());
