@@ -48,7 +48,10 @@
 // 3, 8 or all 16 lanes walking alone, the shadow pass took 0.99-1.02,
 // 1.01-1.09 and 1.23-1.86 times as long, and 0.92, 0.91 and 0.90 on
 // hairball-1m alone: a lane walking alone costs 1.2 to 1.9 times what it
-// costs in the packet. Also not kept (same A/B): the leaf where the
+// costs in the packet. With the walk's reciprocals taken from the packet
+// (no division a lane), up to 3 lanes: shadow pass 0.99-1.02, hairball-1m
+// 0.94 (T_R 0.98); up to 5: 0.99-1.08, hairball-1m 0.93: a gain on one
+// scene against small losses on the others. Also not kept (same A/B): the leaf where the
 // thread's last shadow packet found an occluder tested first for the lanes
 // entering its box (the "last occluder of the neighbouring ray"):
 // shadow pass 0.997-1.048 (fforest too), no scene faster; for lanes
