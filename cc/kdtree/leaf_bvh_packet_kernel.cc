@@ -133,22 +133,20 @@ struct BvhStack {
 template <bool kAnyHit>
 HWY_INLINE void PrefetchChild(const KdTree& tree, const LeafBvhNode* nodes, uint32_t child,
                               int packets) {
-  if (!kAnyHit && (child & LeafBvhNode::kLeafBit)) {
-    const uintptr_t q = reinterpret_cast<uintptr_t>(
-        tree.leaf_soa.data() +
-        static_cast<size_t>(child & ~LeafBvhNode::kLeafBit) * kPacketFloats);
-    const uintptr_t end = q + std::min(packets, 8) * kPacketFloats * sizeof(float);
-    for (uintptr_t a = q & ~uintptr_t{63}; a < end; a += 64) {
+  const bool leaf = (child & LeafBvhNode::kLeafBit) != 0;
+  const char* q =
+      leaf ? reinterpret_cast<const char*>(tree.leaf_soa.data() +
+                                           static_cast<size_t>(child & ~LeafBvhNode::kLeafBit) *
+                                               kPacketFloats)
+           : reinterpret_cast<const char*>(nodes + child);
+  if (!kAnyHit && leaf) {
+    const uintptr_t at = reinterpret_cast<uintptr_t>(q);
+    const uintptr_t end = at + std::min(packets, 8) * kPacketFloats * sizeof(float);
+    for (uintptr_t a = at & ~uintptr_t{63}; a < end; a += 64) {
       __builtin_prefetch(reinterpret_cast<const void*>(a));
     }
     return;
   }
-  const char* q =
-      (child & LeafBvhNode::kLeafBit)
-          ? reinterpret_cast<const char*>(tree.leaf_soa.data() +
-                                          static_cast<size_t>(child & ~LeafBvhNode::kLeafBit) *
-                                              kPacketFloats)
-          : reinterpret_cast<const char*>(nodes + child);
   __builtin_prefetch(q);
   __builtin_prefetch(q + 64);
   __builtin_prefetch(q + 128);
