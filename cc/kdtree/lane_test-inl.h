@@ -136,28 +136,35 @@ struct LaneShear {
 // triangle step, and the camera pass took 0.989-1.026 of the time
 // (in-process A/B, 7 paired rounds, eight scenes, 2026-12-06): the leaf step
 // is not bound by its arithmetic.
-// Nor, for lanes that share their origin o exactly, a filter before the
-// shear (2026-12-07): per leaf packet, in one 4-lane pass, each triangle's
-// three normals (c - o) x (b - o), (a - o) x (c - o), (b - o) x (a - o),
-// whose dot products with a lane's direction have the exact edge
-// functions' signs (the sign the test acts on: watertight.h), and a bound
-// on their rounding (16 gamma_8 times the largest product of two vertices'
-// largest |coordinate| times the group's largest |d|_1, plus a term for
-// underflow; infinite where that product exceeds 2^100); per triangle step
-// three dot products a lane and their comparison (15 wide operations
-// instead of about 55 for the shear, its bound and RejectRays), a lane
-// rejected only when two of its products exceed the bound with opposite
-// signs, the shear skipped when every lane is. A unit test
-// against exact_triple.h's signs (1.3 million ray-triangle pairs aimed at
-// vertices, edges and the floats beside them, scales 1e-15 to 1e30) found
-// no lane rejected wrongly, and 78 % rejected. In-process A/B (AVX3_DL
-// against AVX3, 7 paired rounds, kd_bvh_packet): in TestLeaf and
-// TestLeafFew, camera pass 1.07-1.50 times as long (city2, morse-indoor,
-// lost-empire, bunny, hairball-small, hairball-1m, courtyard-1m); in
-// TestLeaf alone, 1.04-1.17 (bunny, city2, hairball-1m, lost-empire), and
-// 1.01-1.15 with the normals broadcast from memory rather than shuffled
-// from registers. Like the whole-packet cull in leaf_test-inl.h: a
-// triangle that every lane rejects costs the lanes' test little.
+// Nor, for lanes that share their origin o exactly (camera packets), a
+// filter before the shear (2026-12-07): per leaf packet, in one 4-lane
+// pass, each triangle's normals N_U = (c - b) x (b - o), N_V = (a - c) x
+// (c - o), N_W = (b - a) x (a - o) (equal to (c - o) x (b - o) and its
+// cyclic versions, but rounded relative to |edge| |offset|); a lane's dot
+// products with them have the exact edge functions' signs, the signs the
+// test acts on (watertight.h), and a bound on their rounding (16 gamma_8
+// times the largest |edge| |offset| product times the group's largest
+// |d|_1, plus a term for underflow; infinite past 2^100) lets a lane be
+// rejected only when two of them have certainly opposite signs. A unit
+// test against exact_triple.h's signs (rays at vertices, edges and the
+// floats beside them; triangles of 0.3 to 1e-5 of their distance; scales
+// 1e-15 to 1e30) found no lane rejected wrongly. In the kernel it rejected
+// every lane in 73-83 % of TestLeaf's triangle steps (bunny, city2,
+// lost-empire, hairball-1m), and the whole test then rejected every lane
+// in 2-4 % of the rest (15 % on hairball-1m). Yet (in-process A/B, AVX3_DL against AVX3,
+// 7 paired rounds, kd_bvh_packet; bunny, city2, lost-empire, hairball-1m,
+// courtyard-1m) the camera pass took 1.01-1.04 times as long with the
+// filter in TestLeaf's loop, and 0.97-1.01 (the control's noise) with the
+// filter first run over eight leaf packets at a time without a branch on
+// its result and the shear then run only for the steps some lane survives.
+// The filter's pass alone (its result discarded) made the camera pass
+// 1.03-1.15 times as long (hairball-1m 1.03, bunny 1.15), so the steps it
+// saves cost about as much; running TestLeaf twice on every leaf (warm
+// the second time) made it 1.23-1.35 times as long. So the leaf's work is
+// a quarter to a third of the camera pass, up to half of it (bunny) in the
+// triangle steps every lane rejects, and three dot products a lane plus
+// the per-packet normals cost about what the shear they replace does.
+// The whole-packet cull (leaf_test-inl.h) failed for the same reason.
 template <class D>
 HWY_INLINE LaneShear<D> ShearLanes(D d, const Frames<D>& f, const LaneTriangle<D>& t) {
   using V = hn::Vec<D>;
