@@ -136,35 +136,34 @@ struct LaneShear {
 // triangle step, and the camera pass took 0.989-1.026 of the time
 // (in-process A/B, 7 paired rounds, eight scenes, 2026-12-06): the leaf step
 // is not bound by its arithmetic.
-// Nor, for lanes that share their origin o exactly (camera packets), a
-// filter before the shear (2026-12-07): per leaf packet, in one 4-lane
-// pass, each triangle's normals N_U = (c - b) x (b - o), N_V = (a - c) x
-// (c - o), N_W = (b - a) x (a - o) (equal to (c - o) x (b - o) and its
-// cyclic versions, but rounded relative to |edge| |offset|); a lane's dot
-// products with them have the exact edge functions' signs, the signs the
-// test acts on (watertight.h), and a bound on their rounding (16 gamma_8
-// times the largest |edge| |offset| product times the group's largest
-// |d|_1, plus a term for underflow; infinite past 2^100) lets a lane be
-// rejected only when two of them have certainly opposite signs. A unit
-// test against exact_triple.h's signs (rays at vertices, edges and the
-// floats beside them; triangles of 0.3 to 1e-5 of their distance; scales
-// 1e-15 to 1e30) found no lane rejected wrongly. In the kernel it rejected
-// every lane in 73-83 % of TestLeaf's triangle steps (bunny, city2,
-// lost-empire, hairball-1m), and the whole test then rejected every lane
-// in 2-4 % of the rest (15 % on hairball-1m). Yet (in-process A/B, AVX3_DL against AVX3,
-// 7 paired rounds, kd_bvh_packet; bunny, city2, lost-empire, hairball-1m,
-// courtyard-1m) the camera pass took 1.01-1.04 times as long with the
-// filter in TestLeaf's loop, and 0.97-1.01 (the control's noise) with the
-// filter first run over eight leaf packets at a time without a branch on
-// its result and the shear then run only for the steps some lane survives.
-// The filter's pass alone (its result discarded) made the camera pass
-// 1.03-1.15 times as long (hairball-1m 1.03, bunny 1.15), so the steps it
-// saves cost about as much; running TestLeaf twice on every leaf (warm
-// the second time) made it 1.23-1.35 times as long. So the leaf's work is
-// a quarter to a third of the camera pass, up to half of it (bunny) in the
-// triangle steps every lane rejects, and three dot products a lane plus
-// the per-packet normals cost about what the shear they replace does.
-// The whole-packet cull (leaf_test-inl.h) failed for the same reason.
+// Nor, for lanes that share their origin o exactly (camera packets), a filter
+// before the shear (2026-12-07): per leaf packet, in one 4-lane pass, each
+// triangle's normals N_U = (c - b) x (b - o), N_V = (a - c) x (c - o), N_W =
+// (b - a) x (a - o) (equal to (c - o) x (b - o) and its cyclic versions, but
+// rounded relative to |edge| |offset|); a lane's dot products with them have
+// the exact edge functions' signs, the signs the test acts on (watertight.h),
+// and a bound on their rounding (16 gamma_8 times the largest |edge| |offset|
+// product times the group's largest |d|_1, plus a term for underflow; infinite
+// past 2^100) lets a lane be rejected only when two of them have certainly
+// opposite signs. A unit test against exact_triple.h's signs (rays at vertices,
+// edges and the floats beside them; triangles of 0.3 to 1e-5 of their distance;
+// scales 1e-15 to 1e30) found no lane rejected wrongly. In the kernel it
+// rejected every lane in 73-83 % of TestLeaf's triangle steps (bunny, city2,
+// lost-empire, hairball-1m), and the whole test then rejected every lane in
+// 2-4 % of the rest (15 % on hairball-1m). Yet (in-process A/B, AVX3_DL against
+// AVX3, 7 paired rounds, kd_bvh_packet; bunny, city2, lost-empire, hairball-1m,
+// courtyard-1m) the camera pass took 1.01-1.04 times as long with the filter in
+// TestLeaf's loop, and 0.97-1.01 (the control's noise) with the filter first
+// run over eight leaf packets at a time without a branch on its result and the
+// shear then run only for the steps some lane survives. The filter's pass alone
+// (its result discarded) made the camera pass 1.03-1.15 times as long
+// (hairball-1m 1.03, bunny 1.15), so the steps it saves cost about as much;
+// running TestLeaf twice on every leaf (warm the second time) made it 1.23-1.35
+// times as long. So the leaf's work is a quarter to a third of the camera pass,
+// up to half of it (bunny) in the triangle steps every lane rejects, and three
+// dot products a lane plus the per-packet normals cost about what the shear
+// they replace does. The whole-packet cull (leaf_test-inl.h) failed for the
+// same reason.
 template <class D>
 HWY_INLINE LaneShear<D> ShearLanes(D d, const Frames<D>& f, const LaneTriangle<D>& t) {
   using V = hn::Vec<D>;
