@@ -178,6 +178,52 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
   }
 }
 
+// Any-hit packets of one to five rays, so that from the root on a group has
+// few lanes (the per-lane node test, FewLaneChildren), shadow rays leaving
+// their origin triangle among them: each lane is the single ray's answer,
+// on every target.
+TEST(LeafBvh, FewRayAnyHitPacketsOnEveryTarget) {
+  const TriangleSoup soup = MakeSoup("sphere");
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
+  ASSERT_TRUE(tree.ok());
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  std::vector<Ray> rays = testing::CameraRays(soup, 48, 48);
+  for (const Ray& r : testing::RandomRays(soup, 3000, 23)) rays.push_back(r);
+  std::vector<uint32_t> origins(rays.size(), kNoHit);
+  const Vec3 light = tree->bounds.hi + tree->bounds.Extent() * 0.5f;
+  const size_t primary = rays.size();
+  for (size_t i = 0; i < primary; ++i) {
+    const Hit h = Intersect(*tree, rays[i]);
+    if (!h.hit()) continue;
+    const Vec3 &a = soup.a(h.tri), &b = soup.b(h.tri), &c = soup.c(h.tri);
+    rays.push_back(
+        SpawnShadowRay(HitPointWithError(a, b, c, h.u, h.v), GeometricNormal(a, b, c), light));
+    origins.push_back(h.tri);
+  }
+  std::vector<bool> want(rays.size());
+  int blocked = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    TraversalOptions o;
+    o.from_end = true;
+    o.origin_tri = origins[i];
+    want[i] = Occluded(*tree, rays[i], o);
+    blocked += want[i];
+  }
+  EXPECT_GT(blocked, 100);
+  for (const std::string& target : PacketKernelTargets()) {
+    ScopedPacketKernelTarget scoped(target);
+    ASSERT_TRUE(scoped.ok()) << target;
+    int bad = 0;
+    for (size_t i = 0, n = 1; i < rays.size(); i += n, n = n % 5 + 1) {
+      const int m = static_cast<int>(std::min(n, rays.size() - i));
+      bool occluded[kRayPacketSize];
+      OccludedPacketLeafBvh(*tree, bvh, &rays[i], m, &origins[i], occluded);
+      for (int l = 0; l < m; ++l) bad += occluded[l] != want[i + l];
+    }
+    EXPECT_EQ(bad, 0) << target;
+  }
+}
+
 // Counting (render_bench's packet_counts) leaves every answer as it is, and
 // the counts add up: every ray counted, a node or leaf step carrying 1 to 16
 // lanes, each lane's triangle tests within its leaves' steps.
