@@ -17,10 +17,10 @@
 // camera pass 0.99-1.02 (untouched). Up to 8 lanes: hairball-1m 0.877, but
 // 1.006-1.031 on five other scenes; up to 6, as 4. For closest-hit groups as
 // well (each lane's entry distances kept for the pop): camera pass 1.007-1.067,
-// and with at most 2 lanes 0.993-1.028 (six scenes), so not kept. The full sweep after it (README): hairball-1m's best mode
-// 0.87 -> 0.93 of Embree's, its shadow packets 0.69 -> 0.80. It runs on every
-// target with 8-lane float vectors (AVX2 and up); leaf_bvh_test checks it on
-// each.
+// and with at most 2 lanes 0.993-1.028 (six scenes), so not kept. The full
+// sweep after it (README): hairball-1m's best mode 0.87 -> 0.93 of Embree's,
+// its shadow packets 0.69 -> 0.80. It runs on every target with 8-lane float
+// vectors (AVX2 and up); leaf_bvh_test checks it on each.
 #if defined(KDTREE_CC_KDTREE_FEW_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef KDTREE_CC_KDTREE_FEW_LANES_INL_H_
 #undef KDTREE_CC_KDTREE_FEW_LANES_INL_H_
