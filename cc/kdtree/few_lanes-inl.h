@@ -33,6 +33,7 @@
 #include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/mask_bits-inl.h"
 #include "cc/kdtree/packet_rays.h"
+#include "cc/kdtree/slab_slots-inl.h"
 #include "hwy/highway.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -42,28 +43,20 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 // Lane i's slab test of the node's eight boxes in one 8-wide vector, the
-// single ray's form, from its far bound `far` (EnterLanes' tf before the
-// boxes): EnterLanes' float operations in EnterLanes' order, so the lane
-// enters the same slots; t_near8 gets its eight widened entry distances.
+// single ray's (RaySlots), from its far bound `far` (EnterLanes' tf before
+// the boxes): EnterLanes' float operations in EnterLanes' order, so the
+// lane enters the same slots; t_near8 gets its eight widened entry
+// distances.
 template <class D8>
 HWY_INLINE uint32_t LaneSlots(D8 d8, const LeafBvhNode& node, const PacketRays& p, int i,
                               float far, const int near_row[3], const int far_row[3],
                               float* t_near8) {
-  using V = hn::Vec<D8>;
-  const V pad = hn::Set(d8, 4.0f * 0x1p-24f);
-  V tn = hn::Set(d8, p.tmin[i]);
-  V tf = hn::Set(d8, far);
+  hn::Vec<D8> o[3], inv[3];
   for (int k = 0; k < 3; ++k) {
-    const V o = hn::Set(d8, p.org[k][i]), inv = hn::Set(d8, p.inv[k][i]);
-    const V a = hn::Mul(hn::Sub(hn::LoadU(d8, node.box[near_row[k]]), o), inv);
-    const V b = hn::Mul(hn::Sub(hn::LoadU(d8, node.box[far_row[k]]), o), inv);
-    tn = hn::Max(a, tn);
-    tf = hn::Min(b, tf);
+    o[k] = hn::Set(d8, p.org[k][i]);
+    inv[k] = hn::Set(d8, p.inv[k][i]);
   }
-  tn = hn::Sub(tn, hn::Mul(hn::Abs(tn), pad));
-  tf = hn::Add(tf, hn::Mul(hn::Abs(tf), pad));
-  hn::StoreU(tn, d8, t_near8);
-  return Bits(d8, hn::Le(tn, tf));
+  return RaySlots(d8, node, o, inv, near_row, far_row, p.tmin[i], far, t_near8);
 }
 
 // Up to how many lanes of an any-hit group take LaneSlots at a node instead

@@ -6,6 +6,7 @@
 
 #include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/leaf_step-inl.h"
+#include "cc/kdtree/slab_slots-inl.h"
 #include "cc/kdtree/ray_setup.h"
 #include "hwy/highway.h"
 
@@ -15,22 +16,13 @@ namespace {
 namespace hn = hwy::HWY_NAMESPACE;
 namespace lane = packet_internal::HWY_NAMESPACE;
 using DB = hn::CappedTag<float, kBvhWidth>;
-constexpr int kBoxLanes = static_cast<int>(hn::MaxLanes(DB()));
-static_assert(kBvhWidth % kBoxLanes == 0, "a node's slots in whole vectors");
-static_assert(HWY_ARCH_X86, "BoxRay relies on x86's max and min with a NaN operand");
 
 struct Entry {
   uint32_t child;
   float t_near;  // where the ray enters the child's box (closest hit: pruning)
 };
 
-// What the box test needs of the ray. A direction component of +-0 (or
-// whose reciprocal overflows) gives an infinite reciprocal, and a slab
-// distance (b - o) * inf is NaN when the origin lies on the slab's plane;
-// the distances are combined so that a NaN is passed over (x86's max and
-// min return their second operand when one is NaN, and a NaN is only ever
-// the first): the slab then bounds nothing, right for a ray that runs in
-// the plane of a closed box's face.
+// What the box test needs of the ray (slab_slots-inl.h RaySlots).
 struct BoxRay {
   explicit BoxRay(const Ray& ray) {
     for (int k = 0; k < 3; ++k) {
@@ -43,30 +35,6 @@ struct BoxRay {
   hn::Vec<DB> o[3], inv[3];
   int near_row[3], far_row[3];  // LeafBvhNode::box rows
 };
-
-// The slots of `node` whose boxes the ray enters within [tmin, limit] (bit
-// s: slot s), conservatively (the interval widened by 4 u a side: leaf_bvh.h),
-// and where it enters each (t_near).
-HWY_INLINE uint32_t HitSlots(const BoxRay& r, const LeafBvhNode& node, float tmin, float limit,
-                             float* t_near) {
-  const DB d;
-  const hn::Vec<DB> pad = hn::Set(d, 4.0f * 0x1p-24f);
-  uint32_t mask = 0;
-  for (int c = 0; c < kBvhWidth; c += kBoxLanes) {
-    hn::Vec<DB> tn = hn::Set(d, tmin), tf = hn::Set(d, limit);
-    for (int k = 0; k < 3; ++k) {
-      const hn::Vec<DB> a = hn::Mul(hn::Sub(hn::Load(d, node.box[r.near_row[k]] + c), r.o[k]), r.inv[k]);
-      const hn::Vec<DB> b = hn::Mul(hn::Sub(hn::Load(d, node.box[r.far_row[k]] + c), r.o[k]), r.inv[k]);
-      tn = hn::Max(a, tn);
-      tf = hn::Min(b, tf);
-    }
-    tn = hn::Sub(tn, hn::Mul(hn::Abs(tn), pad));
-    tf = hn::Add(tf, hn::Mul(hn::Abs(tf), pad));
-    mask |= lane::Bits(d, hn::Le(tn, tf)) << c;
-    hn::Store(tn, d, t_near + c);
-  }
-  return mask;
-}
 
 // One function for the same reason as traversal.cc's Traverse: the set-up,
 // the stack and the best hit stay in registers.
@@ -93,7 +61,8 @@ Hit TraceLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& input, uint3
       const LeafBvhNode& node = nodes[child];
       HWY_ALIGN float t_near[kBvhWidth];
       uint32_t mask =
-          HitSlots(box_ray, node, ray.tmin, kAnyHit ? best.t : best.t + slack, t_near);
+          lane::RaySlots(DB(), node, box_ray.o, box_ray.inv, box_ray.near_row, box_ray.far_row,
+                         ray.tmin, kAnyHit ? best.t : best.t + slack, t_near);
       if (mask == 0) goto next;
       const int first = __builtin_ctz(mask);
       mask &= mask - 1;

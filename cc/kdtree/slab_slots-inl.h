@@ -1,0 +1,69 @@
+// One ray against a node's eight boxes (leaf_bvh.h) in vectors of D, a
+// node's slots in whole vectors: the conservative slab test of the BVH's
+// single rays (leaf_bvh_traversal.cc, on the build's static target) and of
+// a packet's lanes taken one at a time (few_lanes-inl.h, per target). Per
+// target (Highway's per-target include guard).
+//
+// A direction component of +-0 (or whose reciprocal overflows) gives an
+// infinite reciprocal, and a slab distance (b - o) * inf is NaN when the
+// origin lies on the slab's plane; the distances are combined so that a NaN
+// is passed over (x86's max and min return their second operand when one is
+// NaN, and a NaN is only ever the first): the slab then bounds nothing,
+// right for a ray that runs in the plane of a closed box's face.
+#if defined(KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_
+#undef KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_
+#else
+#define KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_
+#endif
+
+#include <cstdint>
+
+#include "cc/kdtree/leaf_bvh.h"
+#include "cc/kdtree/mask_bits-inl.h"
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace kdtree {
+namespace packet_internal {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+static_assert(HWY_ARCH_X86, "the slab test relies on x86's max and min with a NaN operand");
+
+// The slots of `node` whose boxes the ray (origin o, reciprocal direction
+// inv, per axis in every lane; near_row and far_row: its LeafBvhNode::box
+// rows by direction sign) enters within [tmin, limit] (bit s: slot s),
+// conservatively (the interval widened by 4 u a side: leaf_bvh.h), and
+// where it enters each (t_near, kBvhWidth floats).
+template <class D>
+HWY_INLINE uint32_t RaySlots(D d, const LeafBvhNode& node, const hn::Vec<D> (&o)[3],
+                             const hn::Vec<D> (&inv)[3], const int near_row[3],
+                             const int far_row[3], float tmin, float limit, float* t_near) {
+  using V = hn::Vec<D>;
+  constexpr int n = static_cast<int>(hn::MaxLanes(D()));
+  static_assert(kBvhWidth % n == 0, "a node's slots in whole vectors");
+  const V pad = hn::Set(d, 4.0f * 0x1p-24f);
+  uint32_t mask = 0;
+  for (int c = 0; c < kBvhWidth; c += n) {
+    V tn = hn::Set(d, tmin), tf = hn::Set(d, limit);
+    for (int k = 0; k < 3; ++k) {
+      const V a = hn::Mul(hn::Sub(hn::Load(d, node.box[near_row[k]] + c), o[k]), inv[k]);
+      const V b = hn::Mul(hn::Sub(hn::Load(d, node.box[far_row[k]] + c), o[k]), inv[k]);
+      tn = hn::Max(a, tn);
+      tf = hn::Min(b, tf);
+    }
+    tn = hn::Sub(tn, hn::Mul(hn::Abs(tn), pad));
+    tf = hn::Add(tf, hn::Mul(hn::Abs(tf), pad));
+    mask |= Bits(d, hn::Le(tn, tf)) << c;
+    hn::Store(tn, d, t_near + c);
+  }
+  return mask;
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace packet_internal
+}  // namespace kdtree
+HWY_AFTER_NAMESPACE();
+
+#endif  // KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_
