@@ -181,6 +181,9 @@ def main(argv=None):
         memory = (summarise(render_records, lambda _: memory_table, render_out, *allow)
                   if memory_table else "")
         warm = summarise(render_records, bench_warm.warm_summary, render_out, *allow)
+        tri_table = bench_tables.triangle_bvh_summary(render_records)
+        tri = (summarise(render_records, lambda _: tri_table, render_out, *allow)
+               if tri_table else "")
         classes_table = bench_classes.classes_summary(render_records)
         classes = (summarise(render_records, lambda _: classes_table, render_out, *allow)
                    if classes_table else "")
@@ -204,6 +207,10 @@ def main(argv=None):
     if memory:
         print("\n## Memory: the tree against Embree's BVH (render_bench, bytes per triangle)\n")
         print(memory)
+    if tri:
+        print("\n## What the kd-tree's structure costs: the same kernels over a BVH of whole "
+              "triangles (render_bench tri_bvh, one thread, paired per round)\n")
+        print(tri)
     if any(n.endswith("_twice") for r in render_records for n in r.get("tracers", {})):
         print("\n## First and second traces (render_bench --twice, one thread, paired per "
               "round)\n")

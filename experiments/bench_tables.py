@@ -223,7 +223,10 @@ EMBREE_ALL = ("embree", "embree_packet")
 EMBREE_ROBUST_SINGLE = ("embree_robust",)
 EMBREE_ROBUST_ALL = ("embree_robust", "embree_robust_packet")
 PACKET_MODES = ("kd_packet", "kd_packet_origin", "kd_bvh_packet", "embree_packet",
-                "embree_robust_packet")
+                "embree_robust_packet", "tri_bvh_packet")
+# The baseline that is not a kd-tree: kd_bvh's kernels over a BVH of whole
+# triangles (cc/kdtree/triangle_bvh.h), single rays and packets.
+TRI_BVH_MODES = ("tri_bvh", "tri_bvh_packet")
 # Issue 23's bars: single rays, best mode.
 SINGLE_TARGET, BEST_TARGET = 0.8, 1.0
 
@@ -403,6 +406,58 @@ def packets_summary(records):
                                        format(q["packets"], ","), p["inner_steps"],
                                        p["leaf_steps"], p["triangle_steps"], lanes["inner"],
                                        lanes["triangle"], ray["N_TR"], ray["N_IT"]))
+    return "\n".join(out)
+
+
+def triangle_bvh_summary(records):
+    """What the kd-tree's structure costs (one thread, rows with the
+    baseline's variants): the best mode of our kd-tree (every "kd" tracer, as
+    targets_summary) and of the same kernels over a BVH of whole triangles
+    (tri_bvh, tri_bvh_packet; cc/kdtree/triangle_bvh.h) against Embree's
+    best mode, paired per round; their packets' tracing time alone per pass
+    against Embree's packets (kd_bvh_packet and tri_bvh_packet, as
+    passes_summary); and the bytes each holds per triangle (the kd-tree's
+    tree and its BVH, the triangle BVH, Embree's BVH). What the baseline
+    gains over the kd-tree is the kd-tree's structure; what it still lacks
+    against Embree is the kernel. "" when no row has the baseline."""
+    out = ["| scene | triangles | best mode / Embree's: kd-tree | best mode / Embree's: "
+           "triangle BVH | camera packets: kd-tree, triangle BVH | shadow packets: kd-tree, "
+           "triangle BVH | bytes / triangle: kd-tree, triangle BVH, Embree |",
+           "|---|---|---|---|---|---|---|"]
+    columns = [[] for _ in range(6)]
+    for r in one_thread_by_size(records):
+        t = r["tracers"]
+        if not any(n in t for n in TRI_BVH_MODES):
+            continue
+        ours = [n for n in t if n.startswith("kd") and not n.endswith("_twice")]
+        tri = [n for n in t if n in TRI_BVH_MODES]
+        values = [per_round_ratio(t, EMBREE_ALL, ours), per_round_ratio(t, EMBREE_ALL, tri)]
+        for key in ("primary_s_runs", "secondary_s_runs"):
+            for name in ("kd_bvh_packet", "tri_bvh_packet"):
+                values.append(per_round_ratio(t, ("embree_packet",), (name,), tracing_runs(key)))
+        for k, value in enumerate(values):
+            if value is not None:
+                columns[k].append(value[0])
+        fmt = lambda v: "-" if v is None else "%.2f [%.2f..%.2f]" % v  # noqa: E731
+        cells = [fmt(values[0]), fmt(values[1]), "%s, %s" % (fmt(values[2]), fmt(values[3])),
+                 "%s, %s" % (fmt(values[4]), fmt(values[5]))]
+        n = r["n_tri"]
+        sizes = [r.get("tree_bytes", 0) + r.get("bvh_bytes", 0), r.get("tri_bvh_bytes"),
+                 r.get("embree_bvh_bytes")]
+        cells.append(", ".join("-" if not b else "%.0f" % (b / n) for b in sizes))
+        out.append("| %s | %s | %s |" % (r["scene"], format(n, ","), " | ".join(cells)))
+    if len(out) == 2:
+        return ""
+    names = ("Best mode, kd-tree", "Best mode, triangle BVH", "Camera packets, kd-tree",
+             "Camera packets, triangle BVH", "Shadow packets, kd-tree",
+             "Shadow packets, triangle BVH")
+    for name, values in zip(names, columns):
+        if values:
+            out.append("")
+            out.append("%s, Embree's over ours over %d rows: median %.2f, range %.2f to %.2f, "
+                       "%d at 1.0 or more." % (name, len(values), statistics.median(values),
+                                               min(values), max(values),
+                                               sum(v >= 1.0 for v in values)))
     return "\n".join(out)
 
 

@@ -202,6 +202,34 @@ class BenchTest(unittest.TestCase):
         del r["tracers"]["replay"], r["tracers"]["replay_packet"]
         self.assertNotIn("| s |", bench_tables.passes_summary([r]))
 
+    def test_triangle_bvh_summary_sets_the_baseline_beside_the_kd_tree(self):
+        def runs(total, primary, secondary):
+            return {"T_R_runs": total, "primary_s_runs": primary, "secondary_s_runs": secondary}
+        r = {"scene": "s", "n_tri": 1000, "preset": "sah-packet", "threads": 1,
+             "provenance": provenance(), "tree_bytes": 70000, "bvh_bytes": 10000,
+             "tri_bvh_bytes": 50000, "embree_bvh_bytes": 60000,
+             "tracers": {"kd_bvh_packet": runs([2, 2], [1.0, 1.0], [0.8, 0.8]),
+                         "tri_bvh": runs([3, 3], [1.5, 1.5], [1.2, 1.2]),
+                         "tri_bvh_packet": runs([1.6, 1.6], [0.8, 0.8], [0.6, 0.6]),
+                         "embree": runs([2.5, 2.5], [1.2, 1.2], [1.0, 1.0]),
+                         "embree_packet": runs([1.6, 2.0], [0.7, 0.7], [0.7, 0.7]),
+                         "replay": runs([1, 1], [0.4, 0.4], [0.3, 0.3]),
+                         "replay_packet": runs([1, 1], [0.4, 0.4], [0.3, 0.3])}}
+        text = bench_tables.triangle_bvh_summary([r, dict(r, threads=2)])
+        # Best mode: Embree's 1.6, 2.0 over kd_bvh_packet's 2, 2 (0.80, 1.00)
+        # and over tri_bvh_packet's 1.6 (1.00, 1.25). Camera packets, tracing
+        # alone: 0.3 over 0.6 and 0.4; shadow: 0.4 over 0.5 and 0.3.
+        self.assertIn("| s | 1,000 | 0.90 [0.80..1.00] | 1.12 [1.00..1.25] | "
+                      "0.50 [0.50..0.50], 0.75 [0.75..0.75] | 0.80 [0.80..0.80], "
+                      "1.33 [1.33..1.33] | 80, 50, 60 |", text)
+        self.assertEqual(len([l for l in text.splitlines() if l.startswith("| s |")]), 1)
+        self.assertIn("Best mode, triangle BVH, Embree's over ours over 1 rows: median 1.12, "
+                      "range 1.12 to 1.12, 1 at 1.0 or more.", text)
+        # Rows without the baseline: no table.
+        for name in ("tri_bvh", "tri_bvh_packet"):
+            del r["tracers"][name]
+        self.assertEqual(bench_tables.triangle_bvh_summary([r]), "")
+
     def test_memory_summary_gives_bytes_per_triangle(self):
         one = {"scene": "s", "n_tri": 1000, "preset": "sah-packet", "threads": 1,
                "tree_bytes": 120000, "embree_bvh_bytes": 60000}

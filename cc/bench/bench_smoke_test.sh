@@ -52,6 +52,10 @@ printf 'KDTree {\n    traversalCost 30\n}\n' > kt30.env
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1 \
   --repeats=1 --warmup=0 --variants=kd_packet_origin --envs=kt30.env --env_variant=kd_packet_origin \
   --embree=off --out=env.jsonl > /dev/null
+# The baseline BVH over whole triangles, single rays and packets.
+"$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1 \
+  --repeats=1 --warmup=0 --variants=kd_bvh_packet,tri_bvh,tri_bvh_packet --embree=off \
+  --out=tri.jsonl > /dev/null
 # Every tracer also tracing each query twice (--twice), and the single-ray tracers per
 # class of ray (--classes), with one thread only.
 "$BIN/render_bench" --repo=repo --scenes=tiny --cache_dir= --preset=sah-packet --threads=1,2 \
@@ -171,6 +175,12 @@ check(len(env) == 1 and list(env[0]["tracers"]) == ["kd_packet_origin", "env:kt3
 check("trace_s_median" in env[0]["tracers"]["env:kt30.env"], "env: a tracing time")
 check(env[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_packet_origin": 0,
                                                              "env:kt30.env": 0}, "env: variants")
+check(env[0]["tri_bvh_bytes"] is None, "env: no triangle BVH unless traced")
+tri = [json.loads(l) for l in open("tri.jsonl")]
+check(len(tri) == 1 and tri[0]["validation"]["variants_vs_kd_mismatches"] ==
+      {"kd_bvh_packet": 0, "tri_bvh": 0, "tri_bvh_packet": 0}, "tri_bvh: the kd-tree's answers")
+check(tri[0]["tri_bvh_bytes"] > 0 and tri[0]["tri_bvh_build_s"] >= 0,
+      "tri_bvh: its bytes and build")
 twice = [json.loads(l) for l in open("twice.jsonl")]
 check([list(r["tracers"]) for r in twice] ==
       [["kd_origin", "kd_bvh", "embree", "kd_origin_twice", "kd_bvh_twice", "embree_twice",

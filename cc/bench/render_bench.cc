@@ -62,7 +62,9 @@
 // RenderOptions::skip_origin; validated on every recorded secondary ray),
 // "kd_packet_origin" (both: packets, and shadow rays as in kd_origin), "kd_bvh"
 // (kd_origin's rays through the BVH over the tree's leaves, cc/kdtree/leaf_bvh.h),
-// "kd_bvh_packet" (the same in packets); Embree likewise as "embree" (rtcIntersect1 /
+// "kd_bvh_packet" (the same in packets), "tri_bvh" and "tri_bvh_packet" (kd_bvh's
+// and kd_bvh_packet's kernels over a BVH of whole triangles, no kd-tree,
+// cc/kdtree/triangle_bvh.h: what the kd-tree's leaves cost); Embree likewise as "embree" (rtcIntersect1 /
 // rtcOccluded1) and "embree_packet" (rtcIntersect16 / rtcOccluded16), with
 // ratios of every kd tracer to each; with --embree_robust (the default) also
 // as "embree_robust" and "embree_robust_packet", Embree's scene built with
@@ -111,7 +113,8 @@ ABSL_FLAG(int, warmup, 1,
 ABSL_FLAG(int, check_rays, 300, "Recorded rays (evenly spaced) checked against brute force.");
 ABSL_FLAG(std::string, variants, "kd,kd_packet,kd_origin,kd_packet_origin",
           "kd-tree variants to time: kd, kd_packet, kd_origin, kd_packet_origin, kd_bvh, "
-          "kd_bvh_packet; NAME@TARGET "
+          "kd_bvh_packet; the baseline tri_bvh, tri_bvh_packet (the same kernels over a "
+          "BVH of whole triangles); NAME@TARGET "
           "runs the packet kernel on that Highway target (kd_packet_origin@AVX2; the "
           "machine's: ray_packet.h PacketKernelTargets).");
 ABSL_FLAG(std::string, envs, "",

@@ -65,8 +65,10 @@ absl::StatusOr<Scene> LoadScene(const std::string& name, const RenderBenchOption
   s.config = *config;
   std::vector<std::string> envs;
   for (const std::string& path : o.envs) envs.push_back(FromInvocationDir(path));
+  bool triangle_bvh = false;  // built only for the variants that trace it
+  for (const std::string& v : o.variants) triangle_bvh |= v.rfind("tri_bvh", 0) == 0;
   absl::StatusOr<std::unique_ptr<SceneTrees>> trees =
-      BuildSceneTrees(s.soup, s.config, envs, o.env_variant);
+      BuildSceneTrees(s.soup, s.config, envs, o.env_variant, triangle_bvh);
   if (!trees.ok()) return trees.status();
   s.trees = *std::move(trees);
   absl::StatusOr<std::vector<Entry>> variants =
@@ -326,6 +328,11 @@ Json MakeRecord(const Scene& s, const Validation& v, const Lineup& l, const Time
               // kd_bvh's nodes (its leaves are the tree's) and their build.
               {"bvh_bytes", s.trees->bvh->bvh().bytes()},
               {"bvh_build_s", s.trees->bvh_build_seconds},
+              // tri_bvh's nodes and leaf packets, and their build; null
+              // without it.
+              {"tri_bvh_bytes", s.trees->tri_bvh ? Json(s.trees->tri_bvh->bvh().bytes()) : Json()},
+              {"tri_bvh_build_s",
+               s.trees->tri_bvh ? Json(s.trees->tri_bvh_build_seconds) : Json()},
               {"tracers", std::move(tracers)},
               {"ratio_kd_over_embree", std::move(ratios)},
               {"ratio_kd_over_embree_packet", std::move(packet_ratios)},

@@ -15,7 +15,7 @@ namespace bench {
 
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths,
-    const std::string& env_variant) {
+    const std::string& env_variant, bool triangle_bvh) {
   if (env_variant != "kd" && env_variant != "kd_packet_origin" && env_variant != "kd_bvh" &&
       env_variant != "kd_bvh_packet") {
     return absl::InvalidArgumentError(absl::StrCat("unknown environment-tree variant ", env_variant));
@@ -28,6 +28,11 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
   const absl::Time start = absl::Now();
   trees->bvh = std::make_unique<KdTreeBvhTracer>(trees->tree);
   trees->bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - start);
+  if (triangle_bvh) {
+    const absl::Time tri_start = absl::Now();
+    trees->tri_bvh = std::make_unique<TriangleBvhTracer>(soup);
+    trees->tri_bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - tri_start);
+  }
   for (const std::string& path : env_paths) {
     absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, config);
     if (!env.ok()) return env.status();
@@ -65,6 +70,12 @@ absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
       entries.emplace_back(v, trees.bvh.get(), false, true);
     } else if (v == "kd_bvh_packet") {
       entries.emplace_back(v, trees.bvh.get(), true, true);
+    } else if (v == "tri_bvh" || v == "tri_bvh_packet") {
+      if (trees.tri_bvh == nullptr) {
+        return absl::FailedPreconditionError(
+            absl::StrCat(v, ": the triangle BVH was not built (BuildSceneTrees's triangle_bvh)"));
+      }
+      entries.emplace_back(v, trees.tri_bvh.get(), v == "tri_bvh_packet", true);
     } else {
       return absl::InvalidArgumentError(absl::StrCat("unknown variant ", v));
     }

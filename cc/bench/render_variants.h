@@ -34,23 +34,31 @@ struct SceneTrees {
   // the seconds its build took.
   std::unique_ptr<KdTreeBvhTracer> bvh;
   double bvh_build_seconds = 0;
+  // A BVH over whole triangles traced by the same kernels (tri_bvh;
+  // cc/kdtree/triangle_bvh.h), built only when asked for, and its build's
+  // seconds.
+  std::unique_ptr<TriangleBvhTracer> tri_bvh;
+  double tri_bvh_build_seconds = 0;
   std::vector<EnvTree> envs;
 };
 
 // Builds them for `soup`; `env_paths` are environment files (env_file.h),
 // whose trees are traced as `env_variant`: "kd", "kd_packet_origin",
 // "kd_bvh" or "kd_bvh_packet" (their tracers are the BVH over the leaves
-// then); else an error.
+// then); with `triangle_bvh`, also the BVH over whole triangles
+// (SceneTrees::tri_bvh); else an error.
 absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const TriangleSoup& soup, const Config& config, const std::vector<std::string>& env_paths,
-    const std::string& env_variant = "kd");
+    const std::string& env_variant = "kd", bool triangle_bvh = false);
 
 // The entries `names` ask for ("kd", "kd_packet", "kd_origin",
 // "kd_packet_origin", "kd_bvh" (single rays through the BVH over the
 // leaves, secondary rays as kd_origin's), "kd_bvh_packet" (the same in
-// packets of 4x4 pixels), each optionally NAME@TARGET: the packet
-// kernel on that Highway target), then one per environment tree, traced as
-// `env_variant` (BuildSceneTrees's). Error: an unknown name.
+// packets of 4x4 pixels), "tri_bvh" and "tri_bvh_packet" (the same
+// through the BVH over whole triangles, which `trees` must hold), each
+// optionally NAME@TARGET: the packet kernel on that Highway target), then
+// one per environment tree, traced as `env_variant` (BuildSceneTrees's).
+// Error: an unknown name, or a tri_bvh variant without its BVH.
 absl::StatusOr<std::vector<Entry>> VariantEntries(const SceneTrees& trees,
                                                   const std::vector<std::string>& names,
                                                   const std::string& env_variant);

@@ -1,6 +1,7 @@
 // The build of the BVH over the kd-tree's leaves (leaf_bvh.h): the boxes of
 // every kd subtree's geometry in one pass down the tree with the cells, then
-// the kd hierarchy collapsed into nodes of up to eight children.
+// the kd hierarchy collapsed into nodes of up to eight children
+// (wide_collapse.h).
 #include "cc/kdtree/leaf_bvh.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 
 #include "cc/geometry/aabb.h"
 #include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/wide_collapse.h"
 
 namespace kdtree {
 namespace {
@@ -20,7 +22,28 @@ class Builder {
       : tree_(tree), out_(out), box_(tree.nodes.size()) {}
 
   void Build() {
-    if (Bound(0, tree_.bounds).Valid()) Emit(0);
+    if (Bound(0, tree_.bounds).Valid()) wide_collapse::Collapse(*this, 0, out_);
+  }
+
+  // The hierarchy as wide_collapse::Collapse reads it (kd node indices).
+  bool IsLeaf(uint32_t index) const { return tree_.nodes[index].is_leaf(); }
+  const AABB& Box(uint32_t index) const { return box_[index]; }
+  // The children of kd node `index` that hold geometry.
+  void Children(uint32_t index, std::vector<uint32_t>* list) const {
+    const uint32_t left = index + 1, right = tree_.nodes[index].index();
+    if (box_[left].Valid()) list->push_back(left);
+    if (box_[right].Valid()) list->push_back(right);
+  }
+  uint32_t FirstPacket(uint32_t index) const { return tree_.nodes[index].index(); }
+  // The number of packets of the leaf at `index`.
+  uint32_t Packets(uint32_t index) const {
+    uint32_t count = 1;
+    const float* p = tree_.leaf_soa.data() + static_cast<size_t>(FirstPacket(index)) * kPacketFloats;
+    for (;; p += kPacketFloats, ++count) {
+      uint32_t id0;
+      std::memcpy(&id0, p + kPacketIds, sizeof(id0));
+      if (id0 & kLastPacket) return count;
+    }
   }
 
  private:
@@ -60,73 +83,6 @@ class Builder {
         if (t.Valid()) b.Extend(t);
       }
       if (ids[0] & kLastPacket) return b;
-    }
-  }
-
-  static float HalfArea(const AABB& b) {
-    const Vec3 e = b.Extent();
-    return e.x * e.y + e.y * e.z + e.z * e.x;
-  }
-
-  // The children of kd node `index` that hold geometry.
-  void AddChildren(uint32_t index, std::vector<uint32_t>* list) const {
-    const uint32_t left = index + 1, right = tree_.nodes[index].index();
-    if (box_[left].Valid()) list->push_back(left);
-    if (box_[right].Valid()) list->push_back(right);
-  }
-
-  // The node for the kd subtree at `index` (not empty): its children
-  // expanded, the largest inner one by surface area first, to at most
-  // kBvhWidth subtrees; a leaf at `index` makes a node of one slot.
-  uint32_t Emit(uint32_t index) {
-    std::vector<uint32_t> slots{index};
-    while (slots.size() < static_cast<size_t>(kBvhWidth)) {
-      int widest = -1;
-      for (size_t j = 0; j < slots.size(); ++j) {
-        if (tree_.nodes[slots[j]].is_leaf()) continue;
-        if (widest < 0 || HalfArea(box_[slots[j]]) > HalfArea(box_[slots[widest]])) {
-          widest = static_cast<int>(j);
-        }
-      }
-      if (widest < 0) break;
-      std::vector<uint32_t> kids;
-      AddChildren(slots[widest], &kids);
-      slots[widest] = kids[0];
-      if (kids.size() > 1) slots.push_back(kids[1]);
-    }
-    const uint32_t me = static_cast<uint32_t>(out_->nodes.size());
-    out_->nodes.emplace_back();
-    for (int s = 0; s < kBvhWidth; ++s) SetSlot(me, s, LeafBvhNode::kNone, AABB());
-    for (size_t s = 0; s < slots.size(); ++s) {
-      const KdNode& n = tree_.nodes[slots[s]];
-      const uint32_t child = n.is_leaf() ? (LeafBvhNode::kLeafBit | n.index()) : Emit(slots[s]);
-      SetSlot(me, static_cast<int>(s), child, box_[slots[s]]);
-      if (n.is_leaf()) {
-        out_->nodes[me].packets[s] = static_cast<uint8_t>(std::min(PacketCount(n.index()), 255u));
-      }
-    }
-    return me;
-  }
-
-  // The number of packets of the leaf whose first packet is `first`.
-  uint32_t PacketCount(uint32_t first) const {
-    uint32_t count = 1;
-    for (const float* p = tree_.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;;
-         p += kPacketFloats, ++count) {
-      uint32_t id0;
-      std::memcpy(&id0, p + kPacketIds, sizeof(id0));
-      if (id0 & kLastPacket) return count;
-    }
-  }
-
-  // (out_->nodes may have grown since `me` was made: indexed, not held.)
-  void SetSlot(uint32_t me, int s, uint32_t child, const AABB& b) {
-    LeafBvhNode& node = out_->nodes[me];
-    node.child[s] = child;
-    node.packets[s] = 0;
-    for (int k = 0; k < 3; ++k) {
-      node.box[k][s] = b.lo[k];
-      node.box[3 + k][s] = b.hi[k];
     }
   }
 

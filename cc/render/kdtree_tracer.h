@@ -10,6 +10,7 @@
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 #include "cc/kdtree/tree.h"
+#include "cc/kdtree/triangle_bvh.h"
 #include "cc/render/tracer.h"
 
 namespace kdtree {
@@ -78,6 +79,32 @@ class KdTreeBvhTracer : public KdTreeTracer {
  private:
   const KdTree& tree_;
   LeafBvh bvh_;
+};
+
+// The leaf-BVH kernels over a BVH of whole triangles, no kd-tree
+// (cc/kdtree/triangle_bvh.h: the baseline for what the kd-tree's leaves
+// cost): the same answers as KdTreeTracer's; secondary rays that name their
+// origin triangle leave it untested.
+class TriangleBvhTracer : public Tracer {
+ public:
+  explicit TriangleBvhTracer(const TriangleSoup& soup) : t_(BuildTriangleBvh(soup)) {}
+  std::string name() const override { return "triangle_bvh"; }
+  using Tracer::Occluded;
+  Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(t_.leaves, t_.bvh, ray); }
+  bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
+    return OccludedLeafBvh(t_.leaves, t_.bvh, ray, origin_tri);
+  }
+  void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
+    IntersectPacketLeafBvh(t_.leaves, t_.bvh, rays, n, hits);
+  }
+  void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
+                      bool* occluded) const override {
+    OccludedPacketLeafBvh(t_.leaves, t_.bvh, rays, n, origin_tris, occluded);
+  }
+  const TriangleBvh& bvh() const { return t_; }
+
+ private:
+  TriangleBvh t_;
 };
 
 // Every triangle tested (cc/kdtree/brute_force.h). `bf` must outlive it.

@@ -1,0 +1,206 @@
+// The BVH over whole triangles (triangle_bvh.h), traced by the leaf-BVH
+// kernels, against the kd-tree's own traversal, bit for bit: closest hits,
+// any hits, and shadow rays that leave their origin triangle untested,
+// single rays and packets, with seeded random rays, a camera, axis-parallel
+// rays on the voxel grid's planes, and rays at vertices and edges (checked
+// against brute force too); and its structure (every
+// kept triangle in one leaf, boxes that hold their triangles).
+#include "cc/kdtree/triangle_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cc/geometry/spawn.h"
+#include "cc/kdtree/brute_force.h"
+#include "cc/kdtree/builder.h"
+#include "cc/kdtree/leaf_layout.h"
+#include "cc/kdtree/ray_packet.h"
+#include "cc/kdtree/test_scenes.h"
+#include "cc/kdtree/traversal.h"
+#include "gtest/gtest.h"
+
+namespace kdtree {
+namespace {
+
+TriangleSoup MakeSoup(const std::string& name) {
+  if (name == "sphere") return testing::BumpySphere(4, 1);
+  if (name == "voxels") return testing::VoxelGrid(10, 6, 10, 2);
+  if (name == "thin") return testing::ThinSoup(2000, 3);
+  return testing::FlatScene(1000, 4);
+}
+
+std::vector<Ray> AxisRays(int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> cell(-1, 11), axis(0, 2), sign(0, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    Ray r;
+    for (int k = 0; k < 3; ++k) {
+      r.origin[k] = static_cast<float>(cell(rng)) + (sign(rng) ? 0.5f : 0.0f);
+      r.dir[k] = sign(rng) ? 0.0f : -0.0f;
+    }
+    r.dir[axis(rng)] = sign(rng) ? 1.0f : -1.0f;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+// Rays from random points around the soup aimed at its triangles'
+// vertices and edge midpoints, where a watertight test is hardest.
+std::vector<Ray> VertexAndEdgeRays(const TriangleSoup& soup, int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  const AABB box = soup.Bounds();
+  std::uniform_real_distribution<float> unit(-0.5f, 1.5f);
+  std::uniform_int_distribution<size_t> tri(0, soup.size() - 1);
+  std::uniform_int_distribution<int> which(0, 5);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    const size_t t = tri(rng);
+    const Vec3 v[3] = {soup.a(t), soup.b(t), soup.c(t)};
+    const int w = which(rng);
+    const Vec3 target = w < 3 ? v[w] : (v[w - 3] + v[(w - 2) % 3]) * 0.5f;
+    Ray r;
+    for (int k = 0; k < 3; ++k) r.origin[k] = box.lo[k] + unit(rng) * (box.hi[k] - box.lo[k]);
+    r.dir = target - r.origin;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+// The triangles of the leaf whose first packet is `first`.
+std::vector<uint32_t> LeafIds(const KdTree& leaves, uint32_t first) {
+  std::vector<uint32_t> ids;
+  const float* p = leaves.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
+  for (;; p += kPacketFloats) {
+    uint32_t id[kPacketLanes];
+    std::memcpy(id, p + kPacketIds, sizeof(id));
+    const bool last = (id[0] & kLastPacket) != 0;
+    id[0] &= ~kLastPacket;
+    for (uint32_t t : id) {
+      if (t != kPadLane) ids.push_back(t);
+    }
+    if (last) return ids;
+  }
+}
+
+class TriangleBvhVsKd : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TriangleBvhVsKd, SameAnswers) {
+  const TriangleSoup soup = MakeSoup(GetParam());
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
+  ASSERT_TRUE(tree.ok()) << tree.status();
+  const TriangleBvh tb = BuildTriangleBvh(soup);
+  ASSERT_FALSE(tb.bvh.nodes.empty());
+  const KdTree& leaves = tb.leaves;
+  std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
+  for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
+  for (const Ray& r : AxisRays(3000, 9)) rays.push_back(r);
+  for (const Ray& r : VertexAndEdgeRays(soup, 6000, 5)) rays.push_back(r);
+  const BruteForce bf(soup);
+  const Vec3 light = tree->bounds.hi + tree->bounds.Extent() * 0.5f;
+  TraversalOptions from_end;
+  from_end.from_end = true;
+  int closest = 0, any = 0, shadow = 0, packets = 0, hits = 0;
+  std::vector<Ray> shadow_rays;
+  std::vector<uint32_t> shadow_origins;
+  std::vector<char> shadow_blocked;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Hit want = Intersect(*tree, rays[i]);
+    const Hit got = IntersectLeafBvh(leaves, tb.bvh, rays[i]);
+    closest += !testing::BitwiseSameHit(got, want);
+    any += OccludedLeafBvh(leaves, tb.bvh, rays[i]) != want.hit();
+    if (i % 4 == 0) closest += !testing::BitwiseSameHit(got, bf.Intersect(rays[i]));
+    if (!want.hit()) continue;
+    ++hits;
+    const Vec3 &a = soup.a(want.tri), &b = soup.b(want.tri), &c = soup.c(want.tri);
+    const Ray s = SpawnShadowRay(HitPointWithError(a, b, c, want.u, want.v),
+                                 GeometricNormal(a, b, c), light);
+    TraversalOptions o = from_end;
+    o.origin_tri = want.tri;
+    const bool blocked = Occluded(*tree, s, o);
+    shadow += OccludedLeafBvh(leaves, tb.bvh, s, want.tri) != blocked;
+    shadow_rays.push_back(s);
+    shadow_origins.push_back(want.tri);
+    shadow_blocked.push_back(blocked);
+  }
+  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
+    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
+    Hit got[kRayPacketSize];
+    bool occluded[kRayPacketSize];
+    IntersectPacketLeafBvh(leaves, tb.bvh, &rays[i], n, got);
+    OccludedPacketLeafBvh(leaves, tb.bvh, &rays[i], n, nullptr, occluded);
+    for (int l = 0; l < n; ++l) {
+      const Hit want = Intersect(*tree, rays[i + l]);
+      packets += !testing::BitwiseSameHit(got[l], want) + (occluded[l] != want.hit());
+    }
+  }
+  for (size_t i = 0; i < shadow_rays.size(); i += kRayPacketSize) {
+    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, shadow_rays.size() - i));
+    bool occluded[kRayPacketSize];
+    OccludedPacketLeafBvh(leaves, tb.bvh, &shadow_rays[i], n, &shadow_origins[i], occluded);
+    for (int l = 0; l < n; ++l) packets += occluded[l] != (shadow_blocked[i + l] != 0);
+  }
+  EXPECT_EQ(closest, 0);
+  EXPECT_EQ(any, 0);
+  EXPECT_EQ(shadow, 0);
+  EXPECT_EQ(packets, 0);
+  EXPECT_GT(hits, static_cast<int>(rays.size() / 40));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, TriangleBvhVsKd,
+                         ::testing::Values("sphere", "voxels", "thin", "flat"));
+
+// Every triangle with finite vertices in exactly one leaf, in a slot whose
+// box holds it whole; a NaN triangle in none; slots' packet counts right.
+TEST(TriangleBvh, EachTriangleOnceInsideItsBox) {
+  TriangleSoup soup = MakeSoup("thin");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  soup.Add(Vec3(nan, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  const TriangleBvh tb = BuildTriangleBvh(soup);
+  EXPECT_EQ(tb.leaves.triangles, soup.size());
+  EXPECT_TRUE(tb.leaves.nodes.empty());
+  std::vector<int> seen(soup.size(), 0);
+  int outside = 0, bad_counts = 0;
+  for (const LeafBvhNode& node : tb.bvh.nodes) {
+    for (int s = 0; s < kBvhWidth; ++s) {
+      if (node.child[s] == LeafBvhNode::kNone || !(node.child[s] & LeafBvhNode::kLeafBit)) continue;
+      const std::vector<uint32_t> ids = LeafIds(tb.leaves, node.child[s] & ~LeafBvhNode::kLeafBit);
+      bad_counts += node.packets[s] != (ids.size() + kPacketLanes - 1) / kPacketLanes;
+      for (uint32_t t : ids) {
+        ++seen[t];
+        for (const Vec3& v : {soup.a(t), soup.b(t), soup.c(t)}) {
+          for (int k = 0; k < 3; ++k) {
+            outside += !(v[k] >= node.box[k][s] && v[k] <= node.box[3 + k][s]);
+          }
+        }
+      }
+    }
+  }
+  for (size_t t = 0; t + 1 < soup.size(); ++t) EXPECT_EQ(seen[t], 1) << t;
+  EXPECT_EQ(seen.back(), 0);
+  EXPECT_EQ(outside, 0);
+  EXPECT_EQ(bad_counts, 0);
+}
+
+// One triangle, and none: a one-slot root, and an empty hierarchy that
+// every ray misses.
+TEST(TriangleBvh, TinySoups) {
+  TriangleSoup one;
+  one.Add(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  const TriangleBvh tb = BuildTriangleBvh(one);
+  ASSERT_EQ(tb.bvh.nodes.size(), 1u);
+  const Hit h = IntersectLeafBvh(tb.leaves, tb.bvh, Ray{{0.2f, 0.2f, 1}, {0, 0, -1}});
+  EXPECT_EQ(h.tri, 0u);
+  const TriangleBvh none = BuildTriangleBvh(TriangleSoup());
+  EXPECT_TRUE(none.bvh.nodes.empty());
+  EXPECT_FALSE(IntersectLeafBvh(none.leaves, none.bvh, Ray{{0, 0, 1}, {0, 0, -1}}).hit());
+}
+
+}  // namespace
+}  // namespace kdtree
