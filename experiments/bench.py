@@ -125,8 +125,12 @@ def main(argv=None):
     p.add_argument("--build_presets", default=BUILD_PRESETS)
     p.add_argument("--render_min_tris", type=int, default=50000)
     p.add_argument("--render_preset", default="sah-packet")
+    # The kd-tree's variants, then the baseline over whole triangles
+    # (cc/kdtree/triangle_bvh.h), which the table "What the kd-tree's
+    # structure costs" sets beside them.
     p.add_argument("--render_variants",
-                   default="kd,kd_packet,kd_origin,kd_packet_origin,kd_bvh,kd_bvh_packet")
+                   default="kd,kd_packet,kd_origin,kd_packet_origin,kd_bvh,kd_bvh_packet,"
+                           "tri_bvh,tri_bvh_packet")
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--twice", action="store_true",
                    help="render_bench --twice: every tracer also traces each query twice")
