@@ -181,6 +181,9 @@ check(len(tri) == 1 and tri[0]["validation"]["variants_vs_kd_mismatches"] ==
       {"kd_bvh_packet": 0, "tri_bvh": 0, "tri_bvh_packet": 0}, "tri_bvh: the kd-tree's answers")
 check(tri[0]["tri_bvh_bytes"] > 0 and tri[0]["tri_bvh_build_s"] >= 0,
       "tri_bvh: its bytes and build")
+check(sorted(tri[0]["packet_counts"]) == ["kd_bvh_packet", "tri_bvh_packet"]
+      and tri[0]["packet_counts"]["tri_bvh_packet"]["closest"]["rays"] > 0,
+      "tri_bvh_packet: what its packets did")
 twice = [json.loads(l) for l in open("twice.jsonl")]
 check([list(r["tracers"]) for r in twice] ==
       [["kd_origin", "kd_bvh", "embree", "kd_origin_twice", "kd_bvh_twice", "embree_twice",

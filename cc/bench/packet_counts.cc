@@ -1,6 +1,7 @@
 #include "cc/bench/packet_counts.h"
 
 #include <memory>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "cc/render/kdtree_tracer.h"
@@ -43,16 +44,25 @@ Json PacketCountsJson(const PacketCounters& c) {
 }
 
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
-                                  const RenderOptions& base, const RenderVariant& v, bool bvh) {
+                                  const RenderOptions& base, const RenderVariant& v,
+                                  CountThrough through) {
   std::unique_ptr<ScopedPacketKernelTarget> target;
   if (!v.kernel.empty()) {
     target = std::make_unique<ScopedPacketKernelTarget>(v.kernel);
     if (!target->ok()) return absl::InvalidArgumentError(absl::StrCat("kernel target ", v.kernel));
   }
-  const std::unique_ptr<KdTreeTracer> tracer =
-      bvh ? std::make_unique<KdTreeBvhTracer>(tree) : std::make_unique<KdTreeTracer>(tree);
   PacketCounters closest, any;
-  tracer->CountPackets(&closest, &any);
+  std::unique_ptr<Tracer> tracer;
+  if (through == CountThrough::kTriangleBvh) {
+    auto t = std::make_unique<TriangleBvhTracer>(soup);
+    t->CountPackets(&closest, &any);
+    tracer = std::move(t);
+  } else {
+    auto t = through == CountThrough::kLeafBvh ? std::make_unique<KdTreeBvhTracer>(tree)
+                                               : std::make_unique<KdTreeTracer>(tree);
+    t->CountPackets(&closest, &any);
+    tracer = std::move(t);
+  }
   RenderOptions o = base;
   o.threads = 1;
   o.packets = true;

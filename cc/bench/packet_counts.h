@@ -1,6 +1,7 @@
 // What the packet kernels do in a render: render_bench's record
 // packet_counts, one untimed render per packet variant, through the kd-tree
-// (kd_packet, kd_packet_origin) or the BVH over its leaves (kd_bvh_packet).
+// (kd_packet, kd_packet_origin), the BVH over its leaves (kd_bvh_packet) or
+// the BVH over whole triangles (tri_bvh_packet).
 // Per query (closest hit: primary rays; any hit: shadow and AO rays), the
 // counters of cc/kdtree/ray_packet.h and what they mean per packet: the
 // kernel's steps (inner nodes, leaves, vector triangle tests) and how many
@@ -25,14 +26,21 @@ namespace bench {
 // The counters and their per-packet and per-ray quotients.
 Json PacketCountsJson(const PacketCounters& c);
 
-// One render of `tree` with one thread and v's modes (v.packets must be set;
-// v.kernel: the packet kernel's target, as timed), the packets through the
-// kd-tree or, with `bvh`, through the BVH over its leaves (leaf_bvh.h, built
-// again for the count; inner steps are then the BVH's nodes): {"kernel",
-// "closest", "any"}. Error: a kernel target this machine cannot run.
+// What the packets go through.
+enum class CountThrough {
+  kKdTree,       // the kd-tree (kd_packet, kd_packet_origin)
+  kLeafBvh,      // the BVH over its leaves (kd_bvh_packet; leaf_bvh.h)
+  kTriangleBvh,  // the BVH over whole triangles (tri_bvh_packet; triangle_bvh.h)
+};
+
+// One render with one thread and v's modes (v.packets must be set;
+// v.kernel: the packet kernel's target, as timed), the packets through
+// `through` (a BVH is built again for the count, from `tree` or `soup`;
+// inner steps are then the BVH's nodes): {"kernel", "closest", "any"}.
+// Error: a kernel target this machine cannot run.
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
                                   const RenderOptions& base, const RenderVariant& v,
-                                  bool bvh = false);
+                                  CountThrough through = CountThrough::kKdTree);
 
 }  // namespace bench
 }  // namespace kdtree

@@ -101,12 +101,22 @@ absl::StatusOr<Validation> Validate(const Scene& s, const RenderOptions& ropt,
     if (!st.ok()) return st;
     v.variants[e.name] = bad;
   }
-  // What the packet kernels do: the packet variants through the kd-tree and
-  // through the BVH over its leaves.
+  // What the packet kernels do: the packet variants through the kd-tree,
+  // through the BVH over its leaves and through the BVH over whole
+  // triangles.
   for (const Entry& e : s.variants) {
-    const bool bvh = e.tracer == s.trees->bvh.get();
-    if (!e.packets || (e.tracer != &s.kd() && !bvh)) continue;
-    absl::StatusOr<Json> counts = CountPackets(s.soup, s.trees->tree, s.view, ropt, e, bvh);
+    if (!e.packets) continue;
+    CountThrough through;
+    if (e.tracer == &s.kd()) {
+      through = CountThrough::kKdTree;
+    } else if (e.tracer == s.trees->bvh.get()) {
+      through = CountThrough::kLeafBvh;
+    } else if (s.trees->tri_bvh != nullptr && e.tracer == s.trees->tri_bvh.get()) {
+      through = CountThrough::kTriangleBvh;
+    } else {
+      continue;  // an environment tree
+    }
+    absl::StatusOr<Json> counts = CountPackets(s.soup, s.trees->tree, s.view, ropt, e, through);
     if (!counts.ok()) return counts.status();
     v.packet_counts[e.name] = *std::move(counts);
   }

@@ -95,16 +95,23 @@ class TriangleBvhTracer : public Tracer {
     return OccludedLeafBvh(t_.leaves, t_.bvh, ray, origin_tri);
   }
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
-    IntersectPacketLeafBvh(t_.leaves, t_.bvh, rays, n, hits);
+    IntersectPacketLeafBvh(t_.leaves, t_.bvh, rays, n, hits, closest_);
   }
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override {
-    OccludedPacketLeafBvh(t_.leaves, t_.bvh, rays, n, origin_tris, occluded);
+    OccludedPacketLeafBvh(t_.leaves, t_.bvh, rays, n, origin_tris, occluded, any_);
+  }
+  // As KdTreeTracer::CountPackets (render with one thread).
+  void CountPackets(PacketCounters* closest, PacketCounters* any) {
+    closest_ = closest;
+    any_ = any;
   }
   const TriangleBvh& bvh() const { return t_; }
 
  private:
   TriangleBvh t_;
+  PacketCounters* closest_ = nullptr;
+  PacketCounters* any_ = nullptr;
 };
 
 // Every triangle tested (cc/kdtree/brute_force.h). `bf` must outlive it.
