@@ -9,15 +9,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <random>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "cc/geometry/spawn.h"
-#include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/bvh_check.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/test_scenes.h"
@@ -27,107 +25,25 @@
 namespace kdtree {
 namespace {
 
-TriangleSoup MakeSoup(const std::string& name) {
-  if (name == "sphere") return testing::BumpySphere(4, 1);
-  if (name == "voxels") return testing::VoxelGrid(10, 6, 10, 2);
-  if (name == "thin") return testing::ThinSoup(2000, 3);
-  if (name == "flat") return testing::FlatScene(1000, 4);
-  return {};
-}
-
-// Rays along the axes (directions with +-0 components) from points on the
-// voxel grid's integer planes, which are its leaves' box faces too.
-std::vector<Ray> AxisRays(int count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> cell(-1, 11), axis(0, 2), sign(0, 1);
-  std::vector<Ray> rays;
-  for (int i = 0; i < count; ++i) {
-    Ray r;
-    for (int k = 0; k < 3; ++k) {
-      r.origin[k] = static_cast<float>(cell(rng)) + (sign(rng) ? 0.5f : 0.0f);
-      r.dir[k] = sign(rng) ? 0.0f : -0.0f;
-    }
-    r.dir[axis(rng)] = sign(rng) ? 1.0f : -1.0f;
-    rays.push_back(r);
-  }
-  return rays;
-}
-
-// The lanes of packets of 16 consecutive rays whose closest hit or any hit
-// through `bvh` differs from the kd-tree's single ray, bit for bit.
-int PacketMismatches(const KdTree& tree, const LeafBvh& bvh, const std::vector<Ray>& rays) {
-  int bad = 0;
-  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
-    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
-    Hit hits[kRayPacketSize];
-    bool occluded[kRayPacketSize];
-    IntersectPacketLeafBvh(tree, bvh, &rays[i], n, hits);
-    OccludedPacketLeafBvh(tree, bvh, &rays[i], n, nullptr, occluded);
-    for (int l = 0; l < n; ++l) {
-      const Hit want = Intersect(tree, rays[i + l]);
-      bad += !testing::BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
-    }
-  }
-  return bad;
-}
-
 class LeafBvhVsKd : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 TEST_P(LeafBvhVsKd, SameAnswers) {
   const auto& [scene, preset] = GetParam();
-  const TriangleSoup soup = MakeSoup(scene);
+  const TriangleSoup soup = testing::NamedScene(scene);
   absl::StatusOr<Config> config = Preset(preset);
   ASSERT_TRUE(config.ok());
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
   ASSERT_TRUE(tree.ok()) << tree.status();
   const LeafBvh bvh = BuildLeafBvh(*tree);
   ASSERT_FALSE(bvh.nodes.empty());
-  const BruteForce bf(soup);
   std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
-  for (const Ray& r : AxisRays(3000, 9)) rays.push_back(r);
-  const Vec3 light = tree->bounds.hi + tree->bounds.Extent() * 0.5f;
-  TraversalOptions from_end;
-  from_end.from_end = true;
-  int closest = 0, any = 0, shadow = 0, hits = 0, shadows = 0;
-  std::vector<Ray> shadow_rays;
-  std::vector<uint32_t> shadow_origins;
-  std::vector<char> shadow_blocked;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    const Hit want = Intersect(*tree, rays[i]);
-    const Hit got = IntersectLeafBvh(*tree, bvh, rays[i]);
-    closest += !testing::BitwiseSameHit(got, want);
-    any += OccludedLeafBvh(*tree, bvh, rays[i]) != want.hit();
-    if (i % 16 == 0) closest += !testing::BitwiseSameHit(got, bf.Intersect(rays[i]));
-    if (!want.hit()) continue;
-    ++hits;
-    // A shadow ray from the hit to a light beyond the box, as the renderer
-    // spawns it, leaving its origin triangle untested.
-    const Vec3 &a = soup.a(want.tri), &b = soup.b(want.tri), &c = soup.c(want.tri);
-    const Ray s = SpawnShadowRay(HitPointWithError(a, b, c, want.u, want.v),
-                                 GeometricNormal(a, b, c), light);
-    TraversalOptions o = from_end;
-    o.origin_tri = want.tri;
-    const bool blocked = Occluded(*tree, s, o);
-    shadow += OccludedLeafBvh(*tree, bvh, s, want.tri) != blocked;
-    shadows += blocked;
-    shadow_rays.push_back(s);
-    shadow_origins.push_back(want.tri);
-    shadow_blocked.push_back(blocked);
-  }
-  // Packets of 16 consecutive rays (coherent camera rows among them), each
-  // lane against its single ray, bit for bit.
-  int packets = PacketMismatches(*tree, bvh, rays);
-  for (size_t i = 0; i < shadow_rays.size(); i += kRayPacketSize) {
-    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, shadow_rays.size() - i));
-    bool occluded[kRayPacketSize];
-    OccludedPacketLeafBvh(*tree, bvh, &shadow_rays[i], n, &shadow_origins[i], occluded);
-    for (int l = 0; l < n; ++l) packets += occluded[l] != (shadow_blocked[i + l] != 0);
-  }
-  EXPECT_EQ(closest, 0);
-  EXPECT_EQ(any, 0);
-  EXPECT_EQ(shadow, 0);
-  EXPECT_EQ(packets, 0);
+  for (const Ray& r : testing::GridAxisRays(3000, 9)) rays.push_back(r);
+  const testing::BvhMismatches m = testing::CompareWithKdTree(soup, *tree, *tree, bvh, rays, 16);
+  EXPECT_EQ(m.closest, 0);
+  EXPECT_EQ(m.any, 0);
+  EXPECT_EQ(m.shadow, 0);
+  EXPECT_EQ(m.packets, 0);
   // Each leaf slot's packet count (for the prefetch), 0 elsewhere.
   int bad_counts = 0;
   for (const LeafBvhNode& node : bvh.nodes) {
@@ -144,9 +60,9 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
     }
   }
   EXPECT_EQ(bad_counts, 0);
-  EXPECT_GT(hits, static_cast<int>(rays.size() / 40));
+  EXPECT_GT(m.hits, static_cast<int>(rays.size() / 40));
   std::printf("%s/%s: %zu rays, %d hits, %d shadow rays blocked, %zu nodes\n", scene.c_str(),
-              preset.c_str(), rays.size(), hits, shadows, bvh.nodes.size());
+              preset.c_str(), rays.size(), m.hits, m.shadows, bvh.nodes.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -164,17 +80,17 @@ INSTANTIATE_TEST_SUITE_P(
 // The packet kernel on every Highway target the machine runs (AVX-512's 16
 // lanes, AVX2's two vectors of 8, SSE4's four of 4, ...).
 TEST(LeafBvh, PacketsOnEveryTarget) {
-  const TriangleSoup soup = MakeSoup("voxels");
+  const TriangleSoup soup = testing::NamedScene("voxels");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
   const LeafBvh bvh = BuildLeafBvh(*tree);
   std::vector<Ray> rays = testing::CameraRays(soup, 64, 64);
   for (const Ray& r : testing::RandomRays(soup, 4000, 11)) rays.push_back(r);
-  for (const Ray& r : AxisRays(1000, 13)) rays.push_back(r);
+  for (const Ray& r : testing::GridAxisRays(1000, 13)) rays.push_back(r);
   for (const std::string& target : PacketKernelTargets()) {
     ScopedPacketKernelTarget scoped(target);
     ASSERT_TRUE(scoped.ok()) << target;
-    EXPECT_EQ(PacketMismatches(*tree, bvh, rays), 0) << target;
+    EXPECT_EQ(testing::PacketMismatches(*tree, *tree, bvh, rays), 0) << target;
   }
 }
 
@@ -183,7 +99,7 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
 // their origin triangle among them: each lane is the single ray's answer,
 // on every target.
 TEST(LeafBvh, FewRayAnyHitPacketsOnEveryTarget) {
-  const TriangleSoup soup = MakeSoup("sphere");
+  const TriangleSoup soup = testing::NamedScene("sphere");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
   const LeafBvh bvh = BuildLeafBvh(*tree);
@@ -195,9 +111,7 @@ TEST(LeafBvh, FewRayAnyHitPacketsOnEveryTarget) {
   for (size_t i = 0; i < primary; ++i) {
     const Hit h = Intersect(*tree, rays[i]);
     if (!h.hit()) continue;
-    const Vec3 &a = soup.a(h.tri), &b = soup.b(h.tri), &c = soup.c(h.tri);
-    rays.push_back(
-        SpawnShadowRay(HitPointWithError(a, b, c, h.u, h.v), GeometricNormal(a, b, c), light));
+    rays.push_back(testing::ShadowRayFromHit(soup, h, light));
     origins.push_back(h.tri);
   }
   std::vector<bool> want(rays.size());
@@ -228,7 +142,7 @@ TEST(LeafBvh, FewRayAnyHitPacketsOnEveryTarget) {
 // the counts add up: every ray counted, a node or leaf step carrying 1 to 16
 // lanes, each lane's triangle tests within its leaves' steps.
 TEST(LeafBvh, PacketCountsChangeNoAnswer) {
-  const TriangleSoup soup = MakeSoup("sphere");
+  const TriangleSoup soup = testing::NamedScene("sphere");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
   const LeafBvh bvh = BuildLeafBvh(*tree);

@@ -7,6 +7,8 @@
 #include <random>
 #include <utility>
 
+#include "cc/geometry/spawn.h"
+
 namespace kdtree {
 namespace testing {
 
@@ -164,6 +166,36 @@ std::vector<Ray> CameraRays(const TriangleSoup& soup, int width, int height) {
     }
   }
   return rays;
+}
+
+TriangleSoup NamedScene(const std::string& name) {
+  if (name == "sphere") return BumpySphere(4, 1);
+  if (name == "voxels") return VoxelGrid(10, 6, 10, 2);
+  if (name == "thin") return ThinSoup(2000, 3);
+  if (name == "flat") return FlatScene(1000, 4);
+  return {};
+}
+
+std::vector<Ray> GridAxisRays(int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> cell(-1, 11), axis(0, 2), sign(0, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    Ray r;
+    for (int k = 0; k < 3; ++k) {
+      r.origin[k] = static_cast<float>(cell(rng)) + (sign(rng) ? 0.5f : 0.0f);
+      r.dir[k] = sign(rng) ? 0.0f : -0.0f;
+    }
+    r.dir[axis(rng)] = sign(rng) ? 1.0f : -1.0f;
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+Ray ShadowRayFromHit(const TriangleSoup& soup, const Hit& hit, const Vec3& light) {
+  const Vec3 &a = soup.a(hit.tri), &b = soup.b(hit.tri), &c = soup.c(hit.tri);
+  return SpawnShadowRay(HitPointWithError(a, b, c, hit.u, hit.v), GeometricNormal(a, b, c),
+                        light);
 }
 
 bool BitwiseSameHit(const Hit& a, const Hit& b) {

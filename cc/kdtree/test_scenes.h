@@ -3,6 +3,7 @@
 #define KDTREE_CC_KDTREE_TEST_SCENES_H_
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cc/geometry/ray.h"
@@ -32,6 +33,21 @@ std::vector<Ray> RandomRays(const TriangleSoup& soup, int count, uint32_t seed);
 // Every primary ray of a pinhole camera (width x height) on the +z side of the
 // scene box looking at its centre, 45 degree field of view.
 std::vector<Ray> CameraRays(const TriangleSoup& soup, int width, int height);
+
+// The four generated scenes the BVH tests trace, by name: "sphere"
+// (BumpySphere, 5,120 triangles), "voxels" (VoxelGrid 10 x 6 x 10), "thin"
+// (ThinSoup, 2,000) and "flat" (FlatScene, 1,000); empty for another name.
+TriangleSoup NamedScene(const std::string& name);
+
+// Rays along the axes (directions with +-0 components) from points on the
+// integer and half-integer planes of VoxelGrid(10, ...), which are its
+// leaves' box faces too.
+std::vector<Ray> GridAxisRays(int count, uint32_t seed);
+
+// The shadow ray from `hit` (on soup's triangle hit.tri) to `light`, as the
+// renderer spawns it (spawn.h SpawnShadowRay from the hit point with its
+// error bounds).
+Ray ShadowRayFromHit(const TriangleSoup& soup, const Hit& hit, const Vec3& light);
 
 // Whether two hits are the same bit for bit (triangle, t, u and v): how the
 // packet tests compare a lane with the single-ray traversal.

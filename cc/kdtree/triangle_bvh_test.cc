@@ -1,14 +1,12 @@
 // The BVH over whole triangles (triangle_bvh.h), traced by the leaf-BVH
-// kernels, against the kd-tree's own traversal, bit for bit: closest hits,
-// any hits, and shadow rays that leave their origin triangle untested,
-// single rays and packets, with seeded random rays, a camera, axis-parallel
-// rays on the voxel grid's planes, and rays at vertices and edges (checked
-// against brute force too); and its structure (every
-// kept triangle in one leaf, boxes that hold their triangles).
+// kernels, against the kd-tree's own traversal, bit for bit (bvh_check.h:
+// closest and any hits, shadow rays that leave their origin triangle
+// untested, single rays and packets), with seeded random rays, a camera,
+// axis-parallel rays on the voxel grid's planes, and rays at vertices and
+// edges, one in four against brute force too; and its structure (every kept
+// triangle in one leaf, boxes that hold their triangles).
 #include "cc/kdtree/triangle_bvh.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -16,40 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "cc/geometry/spawn.h"
-#include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
+#include "cc/kdtree/bvh_check.h"
 #include "cc/kdtree/leaf_layout.h"
-#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/test_scenes.h"
-#include "cc/kdtree/traversal.h"
 #include "gtest/gtest.h"
 
 namespace kdtree {
 namespace {
-
-TriangleSoup MakeSoup(const std::string& name) {
-  if (name == "sphere") return testing::BumpySphere(4, 1);
-  if (name == "voxels") return testing::VoxelGrid(10, 6, 10, 2);
-  if (name == "thin") return testing::ThinSoup(2000, 3);
-  return testing::FlatScene(1000, 4);
-}
-
-std::vector<Ray> AxisRays(int count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> cell(-1, 11), axis(0, 2), sign(0, 1);
-  std::vector<Ray> rays;
-  for (int i = 0; i < count; ++i) {
-    Ray r;
-    for (int k = 0; k < 3; ++k) {
-      r.origin[k] = static_cast<float>(cell(rng)) + (sign(rng) ? 0.5f : 0.0f);
-      r.dir[k] = sign(rng) ? 0.0f : -0.0f;
-    }
-    r.dir[axis(rng)] = sign(rng) ? 1.0f : -1.0f;
-    rays.push_back(r);
-  }
-  return rays;
-}
 
 // Rays from random points around the soup aimed at its triangles'
 // vertices and edge midpoints, where a watertight test is hardest.
@@ -92,65 +64,22 @@ std::vector<uint32_t> LeafIds(const KdTree& leaves, uint32_t first) {
 class TriangleBvhVsKd : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(TriangleBvhVsKd, SameAnswers) {
-  const TriangleSoup soup = MakeSoup(GetParam());
+  const TriangleSoup soup = testing::NamedScene(GetParam());
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok()) << tree.status();
   const TriangleBvh tb = BuildTriangleBvh(soup);
   ASSERT_FALSE(tb.bvh.nodes.empty());
-  const KdTree& leaves = tb.leaves;
   std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
-  for (const Ray& r : AxisRays(3000, 9)) rays.push_back(r);
+  for (const Ray& r : testing::GridAxisRays(3000, 9)) rays.push_back(r);
   for (const Ray& r : VertexAndEdgeRays(soup, 6000, 5)) rays.push_back(r);
-  const BruteForce bf(soup);
-  const Vec3 light = tree->bounds.hi + tree->bounds.Extent() * 0.5f;
-  TraversalOptions from_end;
-  from_end.from_end = true;
-  int closest = 0, any = 0, shadow = 0, packets = 0, hits = 0;
-  std::vector<Ray> shadow_rays;
-  std::vector<uint32_t> shadow_origins;
-  std::vector<char> shadow_blocked;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    const Hit want = Intersect(*tree, rays[i]);
-    const Hit got = IntersectLeafBvh(leaves, tb.bvh, rays[i]);
-    closest += !testing::BitwiseSameHit(got, want);
-    any += OccludedLeafBvh(leaves, tb.bvh, rays[i]) != want.hit();
-    if (i % 4 == 0) closest += !testing::BitwiseSameHit(got, bf.Intersect(rays[i]));
-    if (!want.hit()) continue;
-    ++hits;
-    const Vec3 &a = soup.a(want.tri), &b = soup.b(want.tri), &c = soup.c(want.tri);
-    const Ray s = SpawnShadowRay(HitPointWithError(a, b, c, want.u, want.v),
-                                 GeometricNormal(a, b, c), light);
-    TraversalOptions o = from_end;
-    o.origin_tri = want.tri;
-    const bool blocked = Occluded(*tree, s, o);
-    shadow += OccludedLeafBvh(leaves, tb.bvh, s, want.tri) != blocked;
-    shadow_rays.push_back(s);
-    shadow_origins.push_back(want.tri);
-    shadow_blocked.push_back(blocked);
-  }
-  for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
-    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
-    Hit got[kRayPacketSize];
-    bool occluded[kRayPacketSize];
-    IntersectPacketLeafBvh(leaves, tb.bvh, &rays[i], n, got);
-    OccludedPacketLeafBvh(leaves, tb.bvh, &rays[i], n, nullptr, occluded);
-    for (int l = 0; l < n; ++l) {
-      const Hit want = Intersect(*tree, rays[i + l]);
-      packets += !testing::BitwiseSameHit(got[l], want) + (occluded[l] != want.hit());
-    }
-  }
-  for (size_t i = 0; i < shadow_rays.size(); i += kRayPacketSize) {
-    const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, shadow_rays.size() - i));
-    bool occluded[kRayPacketSize];
-    OccludedPacketLeafBvh(leaves, tb.bvh, &shadow_rays[i], n, &shadow_origins[i], occluded);
-    for (int l = 0; l < n; ++l) packets += occluded[l] != (shadow_blocked[i + l] != 0);
-  }
-  EXPECT_EQ(closest, 0);
-  EXPECT_EQ(any, 0);
-  EXPECT_EQ(shadow, 0);
-  EXPECT_EQ(packets, 0);
-  EXPECT_GT(hits, static_cast<int>(rays.size() / 40));
+  const testing::BvhMismatches m =
+      testing::CompareWithKdTree(soup, *tree, tb.leaves, tb.bvh, rays, 4);
+  EXPECT_EQ(m.closest, 0);
+  EXPECT_EQ(m.any, 0);
+  EXPECT_EQ(m.shadow, 0);
+  EXPECT_EQ(m.packets, 0);
+  EXPECT_GT(m.hits, static_cast<int>(rays.size() / 40));
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TriangleBvhVsKd,
@@ -159,7 +88,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TriangleBvhVsKd,
 // Every triangle with finite vertices in exactly one leaf, in a slot whose
 // box holds it whole; a NaN triangle in none; slots' packet counts right.
 TEST(TriangleBvh, EachTriangleOnceInsideItsBox) {
-  TriangleSoup soup = MakeSoup("thin");
+  TriangleSoup soup = testing::NamedScene("thin");
   const float nan = std::numeric_limits<float>::quiet_NaN();
   soup.Add(Vec3(nan, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
   const TriangleBvh tb = BuildTriangleBvh(soup);
