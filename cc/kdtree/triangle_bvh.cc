@@ -22,7 +22,7 @@ constexpr int kMaxDepth = 60;
 struct Node {
   AABB box;
   uint32_t left = 0, right = 0;  // inner: children
-  uint32_t begin = 0, count = 0;  // leaf: its triangles, order_[begin, begin + count)
+  uint32_t begin = 0, count = 0;  // its triangles: order_index_[begin, begin + count)
   uint32_t first_packet = 0;
   bool leaf = false;
 };
@@ -70,9 +70,7 @@ class Builder {
     return true;
   }
 
-  // The binary hierarchy, top down with a stack of (node, depth); a node's
-  // triangles are order_[begin, begin + count) (positions in the kept
-  // arrays).
+  // The binary hierarchy, top down with a stack of (node, depth).
   void Split() {
     order_index_.resize(order_.size());
     for (uint32_t j = 0; j < order_index_.size(); ++j) order_index_[j] = j;
@@ -135,8 +133,9 @@ class Builder {
     return begin + static_cast<uint32_t>(mid - first);
   }
 
+  // In double: the extent of finite floats may overflow a float.
   int Bin(const AABB& centroids, int axis, uint32_t t) const {
-    const float lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
+    const double lo = centroids.lo[axis], extent = centroids.hi[axis] - lo;
     const int b = static_cast<int>((centroids_[t][axis] - lo) / extent * options_.bins);
     return std::min(std::max(b, 0), options_.bins - 1);
   }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/bvh_check.h"
 #include "cc/kdtree/leaf_layout.h"
@@ -129,6 +130,29 @@ TEST(TriangleBvh, TinySoups) {
   const TriangleBvh none = BuildTriangleBvh(TriangleSoup());
   EXPECT_TRUE(none.bvh.nodes.empty());
   EXPECT_FALSE(IntersectLeafBvh(none.leaves, none.bvh, Ray{{0, 0, 1}, {0, 0, -1}}).hit());
+}
+
+// Coordinates near the largest float, whose extents overflow a float: rays
+// still get brute force's answers.
+TEST(TriangleBvh, HugeCoordinates) {
+  TriangleSoup soup;
+  const float big = 3e38f;
+  for (int i = 0; i < 12; ++i) {
+    const float x = (i % 2 ? big : -big) * (0.5f + 0.04f * static_cast<float>(i));
+    soup.Add(Vec3(x, 0, 0), Vec3(x, 1, 0), Vec3(x, 0, 1));
+  }
+  const TriangleBvh tb = BuildTriangleBvh(soup);
+  ASSERT_FALSE(tb.bvh.nodes.empty());
+  const BruteForce bf(soup);
+  int bad = 0;
+  for (int i = 0; i < 12; ++i) {
+    const Vec3 target(soup.a(i).x, 0.25f, 0.25f);
+    for (const Vec3& from : {Vec3(0, 0.25f, 0.25f), Vec3(target.x * 0.5f, 0.3f, 0.2f)}) {
+      const Ray r{from, target - from};
+      bad += !testing::BitwiseSameHit(IntersectLeafBvh(tb.leaves, tb.bvh, r), bf.Intersect(r));
+    }
+  }
+  EXPECT_EQ(bad, 0);
 }
 
 }  // namespace
