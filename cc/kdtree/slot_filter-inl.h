@@ -93,7 +93,16 @@ HWY_INLINE void LaneRange(D d, const float* x, uint32_t lanes, float* lo, float*
 // The group's bounds; tfar_hi is set by the caller. In vectors: against a
 // scalar loop over the lanes, T_R 0.968-1.001 (camera pass 0.968-0.998;
 // in-process A/B, 7 paired rounds, the six scenes above, 2026-12-06; the
-// same code on both sides: T_R 0.983-1.017, camera 0.986-1.004).
+// same code on both sides: T_R 0.983-1.017, camera 0.986-1.004). It costs
+// 12-14 ns a group (three more calls a group, a compiler barrier before
+// each: bunny, city2, lost-empire, morse-indoor; 2026-12-07), about 0.12 ms
+// of morse-indoor's 1.5 ms of shadow tracing. Tried and not kept: the 13
+// bounds reduced together (rows of minima, the highest as minima of the
+// negated values, halved by ConcatEven / ConcatOdd and Min until lane j
+// holds row j's): the same bounds (packet counts identical), T_R
+// 0.988-1.006, camera pass 0.979-1.009, shadow 0.996-1.011 on seven
+// scenes (morse-indoor, city2, morse-kitchen, city, bunny, lost-empire,
+// hairball-1m), inside the control's 0.972-1.013.
 HWY_INLINE SlotFilter MakeSlotFilter(const PacketRays& p, uint32_t lanes) {
   SlotFilter f;
   const hn::ScalableTag<float> d;
