@@ -54,7 +54,9 @@ absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, 
   PacketCounters closest, any;
   std::unique_ptr<Tracer> tracer;
   if (through == CountThrough::kTriangleBvh) {
-    auto t = std::make_unique<TriangleBvhTracer>(soup);
+    absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
+    if (!tri.ok()) return tri.status();
+    auto t = std::make_unique<TriangleBvhTracer>(*std::move(tri));
     t->CountPackets(&closest, &any);
     tracer = std::move(t);
   } else {

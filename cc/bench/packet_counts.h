@@ -37,7 +37,7 @@ enum class CountThrough {
 // v.kernel: the packet kernel's target, as timed), the packets through
 // `through` (a BVH is built again for the count, from `tree` or `soup`;
 // inner steps are then the BVH's nodes): {"kernel", "closest", "any"}.
-// Error: a kernel target this machine cannot run.
+// Errors: a kernel target this machine cannot run; BuildTriangleBvh's.
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
                                   const RenderOptions& base, const RenderVariant& v,
                                   CountThrough through = CountThrough::kKdTree);

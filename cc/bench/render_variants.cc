@@ -30,7 +30,9 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
   trees->bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - start);
   if (triangle_bvh) {
     const absl::Time tri_start = absl::Now();
-    trees->tri_bvh = std::make_unique<TriangleBvhTracer>(soup);
+    absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
+    if (!tri.ok()) return tri.status();
+    trees->tri_bvh = std::make_unique<TriangleBvhTracer>(*std::move(tri));
     trees->tri_bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - tri_start);
   }
   for (const std::string& path : env_paths) {

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/wide_collapse.h"
 
@@ -37,7 +38,6 @@ class Builder {
   void Build() {
     out_->leaves.triangles = soup_.size();
     for (uint32_t i = 0; i < soup_.size(); ++i) {
-      if (!Finite(i)) continue;  // a NaN or infinite vertex: no ray hits it
       const AABB b = soup_.Bounds(i);
       order_.push_back(i);
       boxes_.push_back(b);
@@ -61,15 +61,6 @@ class Builder {
   uint32_t Packets(uint32_t i) const { return PacketsOf(nodes_[i].count); }
 
  private:
-  bool Finite(uint32_t t) const {
-    for (const Vec3& v : {soup_.a(t), soup_.b(t), soup_.c(t)}) {
-      for (int k = 0; k < 3; ++k) {
-        if (!std::isfinite(v[k])) return false;
-      }
-    }
-    return true;
-  }
-
   // The binary hierarchy, top down with a stack of (node, depth).
   void Split() {
     order_index_.resize(order_.size());
@@ -221,16 +212,29 @@ class Builder {
   const TriangleSoup& soup_;
   const TriangleBvhOptions options_;
   TriangleBvh* out_;
-  std::vector<uint32_t> order_;        // the soup index of each kept triangle
-  std::vector<AABB> boxes_;            // per kept triangle
-  std::vector<Vec3> centroids_;        // per kept triangle: its box's centre
-  std::vector<uint32_t> order_index_;  // kept triangles, in leaf order
+  std::vector<uint32_t> order_;        // the soup's triangles (all kept)
+  std::vector<AABB> boxes_;            // per triangle
+  std::vector<Vec3> centroids_;        // per triangle: its box's centre
+  std::vector<uint32_t> order_index_;  // triangles, in leaf order
   std::vector<Node> nodes_;            // nodes_[0]: the root
 };
 
 }  // namespace
 
-TriangleBvh BuildTriangleBvh(const TriangleSoup& soup, const TriangleBvhOptions& options) {
+absl::StatusOr<TriangleBvh> BuildTriangleBvh(const TriangleSoup& soup,
+                                             const TriangleBvhOptions& options) {
+  if (soup.v.size() % 3 != 0) {
+    return absl::InvalidArgumentError("triangle soup size is not a multiple of 3");
+  }
+  if (soup.size() >= KdNode::kMaxIndex) {
+    return absl::InvalidArgumentError(absl::StrCat("too many triangles: ", soup.size()));
+  }
+  for (size_t i = 0; i < soup.v.size(); ++i) {
+    if (!IsFinite(soup.v[i])) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("triangle ", i / 3, " has a non-finite vertex; drop it at load"));
+    }
+  }
   TriangleBvh bvh;
   Builder(soup, options, &bvh).Build();
   return bvh;

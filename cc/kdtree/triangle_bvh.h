@@ -20,8 +20,8 @@
 // MacDonald & Booth's surface area heuristic, The Visual Computer 6(3),
 // 1990), costs counted in leaf packets of four triangles as the leaf test
 // runs them, a leaf where the SAH prefers it; then collapsed into eight-wide
-// nodes as the kd-tree's BVH is (wide_collapse.h). Each triangle with finite
-// vertices is in exactly one leaf, stored in leaf_layout.h's packets.
+// nodes as the kd-tree's BVH is (wide_collapse.h). Each triangle is in
+// exactly one leaf, stored in leaf_layout.h's packets.
 //
 // Exactness: a triangle's box holds it whole, and the traversal and the leaf
 // test are the kd-tree's BVH's (leaf_bvh.h: a conservative box test, the
@@ -31,6 +31,8 @@
 #define KDTREE_CC_KDTREE_TRIANGLE_BVH_H_
 
 #include <cstddef>
+
+#include "absl/status/statusor.h"
 
 #include "cc/geometry/triangle.h"
 #include "cc/kdtree/leaf_bvh.h"
@@ -59,7 +61,12 @@ struct TriangleBvh {
   size_t bytes() const { return bvh.bytes() + leaves.leaf_soa.size() * sizeof(float); }
 };
 
-TriangleBvh BuildTriangleBvh(const TriangleSoup& soup, const TriangleBvhOptions& options = {});
+// The hierarchy over `soup`'s triangles (an empty one for an empty soup).
+// Errors, as BuildKdTree's: a non-finite vertex (the loaders drop such
+// triangles), a soup whose size is not a multiple of 3, or 2^30 - 1
+// triangles or more.
+absl::StatusOr<TriangleBvh> BuildTriangleBvh(const TriangleSoup& soup,
+                                             const TriangleBvhOptions& options = {});
 
 }  // namespace kdtree
 

@@ -4,6 +4,7 @@
 #define KDTREE_CC_RENDER_KDTREE_TRACER_H_
 
 #include <string>
+#include <utility>
 
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/leaf_bvh.h"
@@ -87,7 +88,7 @@ class KdTreeBvhTracer : public KdTreeTracer {
 // origin triangle leave it untested.
 class TriangleBvhTracer : public Tracer {
  public:
-  explicit TriangleBvhTracer(const TriangleSoup& soup) : t_(BuildTriangleBvh(soup)) {}
+  explicit TriangleBvhTracer(TriangleBvh bvh) : t_(std::move(bvh)) {}
   std::string name() const override { return "triangle_bvh"; }
   using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(t_.leaves, t_.bvh, ray); }
