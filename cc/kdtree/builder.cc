@@ -36,9 +36,7 @@ bool UsesIndexRefs(const Config& config) {
 
 }  // namespace
 
-absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config,
-                                   const BuildLimits& limits) {
-  if (absl::Status s = config.Validate(); !s.ok()) return s;
+absl::Status CheckBuildInput(const TriangleSoup& soup) {
   if (soup.v.size() % 3 != 0) {
     return absl::InvalidArgumentError("triangle soup size is not a multiple of 3");
   }
@@ -51,6 +49,13 @@ absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& confi
           absl::StrCat("triangle ", i / 3, " has a non-finite vertex; drop it at load"));
     }
   }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config,
+                                   const BuildLimits& limits) {
+  if (absl::Status s = config.Validate(); !s.ok()) return s;
+  if (absl::Status s = CheckBuildInput(soup); !s.ok()) return s;
   const auto start = std::chrono::steady_clock::now();
   KdTree tree;
   tree.config = config;

@@ -38,7 +38,13 @@ struct BuildLimits {
   uint64_t max_bytes = 0;  // 0: no limit but the 2^30 index range
 };
 
-// Errors: invalid config, non-finite vertices, more than 2^30 nodes or refs
+// What every builder (this one, triangle_bvh.h's) refuses of its input: a
+// soup whose size is not a multiple of 3, 2^30 - 1 triangles or more, or a
+// non-finite vertex (InvalidArgument naming the triangle; the loaders drop
+// such triangles).
+absl::Status CheckBuildInput(const TriangleSoup& soup);
+
+// Errors: invalid config, CheckBuildInput's, more than 2^30 nodes or refs
 // or 2^30 - 1 leaf packets, or a tree over limits.max_bytes
 // (ResourceExhausted, saying where it stopped).
 absl::StatusOr<KdTree> BuildKdTree(const TriangleSoup& soup, const Config& config,

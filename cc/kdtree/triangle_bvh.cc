@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "absl/strings/str_cat.h"
+#include "cc/kdtree/builder.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/wide_collapse.h"
 
@@ -223,18 +223,7 @@ class Builder {
 
 absl::StatusOr<TriangleBvh> BuildTriangleBvh(const TriangleSoup& soup,
                                              const TriangleBvhOptions& options) {
-  if (soup.v.size() % 3 != 0) {
-    return absl::InvalidArgumentError("triangle soup size is not a multiple of 3");
-  }
-  if (soup.size() >= KdNode::kMaxIndex) {
-    return absl::InvalidArgumentError(absl::StrCat("too many triangles: ", soup.size()));
-  }
-  for (size_t i = 0; i < soup.v.size(); ++i) {
-    if (!IsFinite(soup.v[i])) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("triangle ", i / 3, " has a non-finite vertex; drop it at load"));
-    }
-  }
+  if (absl::Status s = CheckBuildInput(soup); !s.ok()) return s;
   TriangleBvh bvh;
   Builder(soup, options, &bvh).Build();
   return bvh;

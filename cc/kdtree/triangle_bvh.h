@@ -62,9 +62,7 @@ struct TriangleBvh {
 };
 
 // The hierarchy over `soup`'s triangles (an empty one for an empty soup).
-// Errors, as BuildKdTree's: a non-finite vertex (the loaders drop such
-// triangles), a soup whose size is not a multiple of 3, or 2^30 - 1
-// triangles or more.
+// Errors: builder.h's CheckBuildInput, as BuildKdTree's.
 absl::StatusOr<TriangleBvh> BuildTriangleBvh(const TriangleSoup& soup,
                                              const TriangleBvhOptions& options = {});
 
