@@ -45,7 +45,7 @@ Json PacketCountsJson(const PacketCounters& c) {
 
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
                                   const RenderOptions& base, const RenderVariant& v,
-                                  CountThrough through) {
+                                  CountThrough through, std::shared_ptr<const TriangleBvh> tri) {
   std::unique_ptr<ScopedPacketKernelTarget> target;
   if (!v.kernel.empty()) {
     target = std::make_unique<ScopedPacketKernelTarget>(v.kernel);
@@ -54,9 +54,7 @@ absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, 
   PacketCounters closest, any;
   std::unique_ptr<Tracer> tracer;
   if (through == CountThrough::kTriangleBvh) {
-    absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
-    if (!tri.ok()) return tri.status();
-    auto t = std::make_unique<TriangleBvhTracer>(*std::move(tri));
+    auto t = std::make_unique<TriangleBvhTracer>(std::move(tri));
     t->CountPackets(&closest, &any);
     tracer = std::move(t);
   } else {

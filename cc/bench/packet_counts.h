@@ -11,12 +11,15 @@
 #ifndef KDTREE_CC_BENCH_PACKET_COUNTS_H_
 #define KDTREE_CC_BENCH_PACKET_COUNTS_H_
 
+#include <memory>
+
 #include "absl/status/statusor.h"
 #include "cc/bench/bench_record.h"
 #include "cc/bench/render_check.h"
 #include "cc/geometry/triangle.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/tree.h"
+#include "cc/kdtree/triangle_bvh.h"
 #include "cc/render/renderer.h"
 #include "cc/render/view.h"
 
@@ -35,12 +38,14 @@ enum class CountThrough {
 
 // One render with one thread and v's modes (v.packets must be set;
 // v.kernel: the packet kernel's target, as timed), the packets through
-// `through` (a BVH is built again for the count, from `tree` or `soup`;
-// inner steps are then the BVH's nodes): {"kernel", "closest", "any"}.
-// Errors: a kernel target this machine cannot run; BuildTriangleBvh's.
+// `through`: `tree`, the BVH over its leaves (built again for the count, in
+// milliseconds) or `tri` (the timed tracer's, not null then); a BVH's inner
+// steps are its nodes: {"kernel", "closest", "any"}. Error: a kernel target
+// this machine cannot run.
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
                                   const RenderOptions& base, const RenderVariant& v,
-                                  CountThrough through = CountThrough::kKdTree);
+                                  CountThrough through = CountThrough::kKdTree,
+                                  std::shared_ptr<const TriangleBvh> tri = nullptr);
 
 }  // namespace bench
 }  // namespace kdtree

@@ -107,16 +107,19 @@ absl::StatusOr<Validation> Validate(const Scene& s, const RenderOptions& ropt,
   for (const Entry& e : s.variants) {
     if (!e.packets) continue;
     CountThrough through;
+    std::shared_ptr<const TriangleBvh> tri;
     if (e.tracer == &s.kd()) {
       through = CountThrough::kKdTree;
     } else if (e.tracer == s.trees->bvh.get()) {
       through = CountThrough::kLeafBvh;
     } else if (s.trees->tri_bvh != nullptr && e.tracer == s.trees->tri_bvh.get()) {
       through = CountThrough::kTriangleBvh;
+      tri = s.trees->tri_bvh->bvh();
     } else {
       continue;  // an environment tree
     }
-    absl::StatusOr<Json> counts = CountPackets(s.soup, s.trees->tree, s.view, ropt, e, through);
+    absl::StatusOr<Json> counts =
+        CountPackets(s.soup, s.trees->tree, s.view, ropt, e, through, tri);
     if (!counts.ok()) return counts.status();
     v.packet_counts[e.name] = *std::move(counts);
   }
@@ -340,7 +343,7 @@ Json MakeRecord(const Scene& s, const Validation& v, const Lineup& l, const Time
               {"bvh_build_s", s.trees->bvh_build_seconds},
               // tri_bvh's nodes and leaf packets, and their build; null
               // without it.
-              {"tri_bvh_bytes", s.trees->tri_bvh ? Json(s.trees->tri_bvh->bvh().bytes()) : Json()},
+              {"tri_bvh_bytes", s.trees->tri_bvh ? Json(s.trees->tri_bvh->bvh()->bytes()) : Json()},
               {"tri_bvh_build_s",
                s.trees->tri_bvh ? Json(s.trees->tri_bvh_build_seconds) : Json()},
               {"tracers", std::move(tracers)},

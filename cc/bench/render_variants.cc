@@ -32,7 +32,8 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     const absl::Time tri_start = absl::Now();
     absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
     if (!tri.ok()) return tri.status();
-    trees->tri_bvh = std::make_unique<TriangleBvhTracer>(*std::move(tri));
+    trees->tri_bvh = std::make_unique<TriangleBvhTracer>(
+        std::make_shared<const TriangleBvh>(*std::move(tri)));
     trees->tri_bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - tri_start);
   }
   for (const std::string& path : env_paths) {

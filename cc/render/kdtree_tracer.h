@@ -3,6 +3,7 @@
 #ifndef KDTREE_CC_RENDER_KDTREE_TRACER_H_
 #define KDTREE_CC_RENDER_KDTREE_TRACER_H_
 
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -86,31 +87,35 @@ class KdTreeBvhTracer : public KdTreeTracer {
 // (cc/kdtree/triangle_bvh.h: the baseline for what the kd-tree's leaves
 // cost): the same answers as KdTreeTracer's; secondary rays that name their
 // origin triangle leave it untested.
+// Tracers may share one hierarchy (render_bench's count of the packets'
+// work traces the timed tracer's).
 class TriangleBvhTracer : public Tracer {
  public:
-  explicit TriangleBvhTracer(TriangleBvh bvh) : t_(std::move(bvh)) {}
+  explicit TriangleBvhTracer(std::shared_ptr<const TriangleBvh> bvh) : bvh_(std::move(bvh)) {}
   std::string name() const override { return "triangle_bvh"; }
   using Tracer::Occluded;
-  Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(t_.leaves, t_.bvh, ray); }
+  Hit Intersect(const Ray& ray) const override {
+    return IntersectLeafBvh(bvh_->leaves, bvh_->bvh, ray);
+  }
   bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
-    return OccludedLeafBvh(t_.leaves, t_.bvh, ray, origin_tri);
+    return OccludedLeafBvh(bvh_->leaves, bvh_->bvh, ray, origin_tri);
   }
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
-    IntersectPacketLeafBvh(t_.leaves, t_.bvh, rays, n, hits, closest_);
+    IntersectPacketLeafBvh(bvh_->leaves, bvh_->bvh, rays, n, hits, closest_);
   }
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override {
-    OccludedPacketLeafBvh(t_.leaves, t_.bvh, rays, n, origin_tris, occluded, any_);
+    OccludedPacketLeafBvh(bvh_->leaves, bvh_->bvh, rays, n, origin_tris, occluded, any_);
   }
   // As KdTreeTracer::CountPackets (render with one thread).
   void CountPackets(PacketCounters* closest, PacketCounters* any) {
     closest_ = closest;
     any_ = any;
   }
-  const TriangleBvh& bvh() const { return t_; }
+  const std::shared_ptr<const TriangleBvh>& bvh() const { return bvh_; }
 
  private:
-  TriangleBvh t_;
+  std::shared_ptr<const TriangleBvh> bvh_;
   PacketCounters* closest_ = nullptr;
   PacketCounters* any_ = nullptr;
 };
