@@ -100,6 +100,11 @@ ABSL_FLAG(bool, fast_render, false,
           "pixels, shadow rays leaving their origin triangle untested and searched from the "
           "light), and those shadow rays one at a time (our other single-ray mode): record "
           "field fast_render, held to the timed image.");
+ABSL_FLAG(bool, triangle_bvh, false,
+          "With --fast_render: also time the fastest mode's rays, one at a time and in its "
+          "packets, through a BVH of whole triangles traced by the same kernels (a baseline, "
+          "not a kd-tree: cc/kdtree/triangle_bvh.h); record field fast_render.triangle_bvh, "
+          "held to the timed image.");
 ABSL_FLAG(std::string, cache_dir, "data/cache/soups", "Triangle-soup cache directory ('' = none).");
 ABSL_FLAG(double, memory_budget_gb, 0,
           "Memory a run may use before it is refused (GB; 0 = half of physical memory).");
@@ -299,6 +304,7 @@ absl::Status Run() {
   choice.fast = absl::GetFlag(FLAGS_fast_render);
   choice.embree_timed = f.embree_timed;
   choice.embree_robust = absl::GetFlag(FLAGS_embree_robust);
+  choice.triangle_bvh = absl::GetFlag(FLAGS_triangle_bvh);
   choice.render = ropt;
   absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, tree, kd, b.embree.get(), f.eo, choice);
   if (!lane_set.ok()) return lane_set.status();
@@ -326,6 +332,7 @@ absl::Status Run() {
   // build time is kept: the record's fast_render.single_bvh.build_s).
   lane_set->robust.reset();
   lane_set->bvh.reset();
+  lane_set->triangle_bvh.reset();
   // The lanes' tracers (the warm trees) are freed by the timed builds.
   st = TimeBuildRounds(*soup, rc.config, f.embree_timed ? &f.eo : nullptr, f.repeats, f.budget_s, step, &b);
   lock.Release();
@@ -355,6 +362,7 @@ absl::Status Run() {
   AddComparisons(lanes, choice.fast, f.use_embree ? &f.quality : nullptr, f.embree_timed, b,
                  untimed->disagreements, pixels, lane_set->bvh_build_s, &rec);
   AddRobustEmbree(lanes, untimed->robust_disagreements, &rec);
+  AddTriangleBvh(lanes, lane_set->triangle_bvh_build_s, lane_set->triangle_bvh_bytes, &rec);
   AddPassComparisons(lanes, &rec);
   Provenance prov = CollectProvenance(Workspace());
   prov.timing_lock = lock.path();

@@ -1,5 +1,6 @@
 #include "cc/tools/kdrt_lanes.h"
 
+#include <memory>
 #include <utility>
 
 #include "absl/time/clock.h"
@@ -29,6 +30,20 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     set.bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
     lanes.push_back({kSingleBvhLane, set.bvh.get(), so});
     lanes.push_back({kPacketsBvhLane, set.bvh.get(), fo});
+  }
+  if (choice.triangle_bvh) {
+    if (!choice.fast) return absl::InvalidArgumentError("--triangle_bvh needs --fast_render");
+    const absl::Time start = absl::Now();
+    absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
+    if (!tri.ok()) return tri.status();
+    set.triangle_bvh_bytes = tri->bytes();
+    set.triangle_bvh = std::make_unique<TriangleBvhTracer>(
+        std::make_shared<const TriangleBvh>(*std::move(tri)));
+    set.triangle_bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
+    RenderOptions so = ropt;
+    so.skip_origin = true;
+    lanes.push_back({kTriangleBvhLane, set.triangle_bvh.get(), so});
+    lanes.push_back({kTriangleBvhPacketsLane, set.triangle_bvh.get(), fo});
   }
   const bool timed = choice.embree_timed && embree != nullptr;
   set.embree_lane = lanes.size();

@@ -12,6 +12,7 @@
 #include "cc/embree/embree_tracer.h"
 #include "cc/geometry/triangle.h"
 #include "cc/kdtree/tree.h"
+#include "cc/kdtree/triangle_bvh.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/renderer.h"
 #include "cc/render/replay_tracer.h"
@@ -25,6 +26,7 @@ struct LaneChoice {
   bool fast = false;           // --fast_render: the fastest mode and our other single-ray mode
   bool embree_timed = false;   // Embree (`embree`) timed in the same rounds
   bool embree_robust = false;  // also Embree built robust (with fast and embree_timed)
+  bool triangle_bvh = false;   // also the baseline over whole triangles (with fast)
   RenderOptions render;        // the kd-tree's options (threads, shadow rays)
 };
 
@@ -39,6 +41,11 @@ struct LaneSet {
   // third single-ray mode, and the seconds its build took.
   std::unique_ptr<KdTreeBvhTracer> bvh;
   double bvh_build_s = 0;
+  // With `fast` and `triangle_bvh`: the same kernels over a BVH of whole
+  // triangles (cc/kdtree/triangle_bvh.h), its build's seconds and its bytes.
+  std::unique_ptr<TriangleBvhTracer> triangle_bvh;
+  double triangle_bvh_build_s = 0;
+  size_t triangle_bvh_bytes = 0;
   std::unique_ptr<ReplayTracer> replay_single, replay_packets;  // or null
 };
 
@@ -46,7 +53,8 @@ struct LaneSet {
 // (packets of 4x4 pixels, shadow rays leaving their origin triangle untested
 // and searched from the light: RenderOptions::skip_origin) and those shadow
 // rays one at a time, then the same rays one at a time through the BVH over
-// `tree`'s leaves (kd-tree's tracer is on `tree`); Embree's single rays when timed, and with `fast` its
+// `tree`'s leaves (kd-tree's tracer is on `tree`), and with `triangle_bvh`
+// both modes' rays through a BVH of whole triangles; Embree's single rays when timed, and with `fast` its
 // packet calls on the same blocks (rtcIntersect16 with the coherent flag,
 // rtcOccluded16: its best mode is the faster of the two, #23's fair bar);
 // with `fast` and `embree_robust` a second Embree built robust (`eo` with

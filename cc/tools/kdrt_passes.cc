@@ -59,7 +59,11 @@ absl::StatusOr<UntimedResults> UntimedPasses(const TriangleSoup& soup, const KdT
   }
   recorded.rays = std::vector<RayRecord>();
   for (Lane& l : lanes) {
-    if (l.tracer == &kd || l.replay != nullptr) l.last = recorded;  // to reproduce
+    // Our tracers give the kd-tree's answers bit for bit, in every mode: each
+    // of their lanes must reproduce its image and hit counts.
+    const bool ours = l.tracer == &kd || l.tracer == set->bvh.get() ||
+                      l.tracer == set->triangle_bvh.get();
+    if (ours || l.replay != nullptr) l.last = recorded;  // to reproduce
     if (l.replay != nullptr) {  // its answers, recorded in its mode (its warm-up)
       l.replay->Record();
       l.warmup_s = Render(soup, *l.replay, view, l.opt).seconds;

@@ -226,6 +226,27 @@ void AddRobustEmbree(const std::vector<Lane>& lanes, const Json& disagreements, 
       {"wrong", wrong}};
 }
 
+void AddTriangleBvh(const std::vector<Lane>& lanes, double build_s, size_t bytes, Json* rec) {
+  const Lane* ts = FindLane(lanes, kTriangleBvhLane);
+  const Lane* tp = FindLane(lanes, kTriangleBvhPacketsLane);
+  if (ts == nullptr || tp == nullptr || (*rec)["fast_render"].is_null()) return;
+  Json out = {{"single", LaneTimes(*ts)},
+              {"packets", LaneTimes(*tp)},
+              {"build_s", build_s},
+              {"bytes", bytes}};
+  const Lane* el = FindLane(lanes, kEmbreeLane);
+  const Lane* ep = FindLane(lanes, kEmbreePacketsLane);
+  if (el != nullptr && ep != nullptr) {
+    const std::vector<double> single = FastestRatios({el}, {ts});
+    const std::vector<double> best = FastestRatios({el, ep}, {ts, tp});
+    out["single_paired_ratio_runs"] = single;
+    out["single_paired_ratio"] = Median(single);
+    out["best_paired_ratio_runs"] = best;
+    out["best_paired_ratio"] = Median(best);
+  }
+  (*rec)["fast_render"]["triangle_bvh"] = std::move(out);
+}
+
 namespace {
 
 // A pass's times per round: primary (camera) or shadow rays.

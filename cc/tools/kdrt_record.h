@@ -5,6 +5,7 @@
 #ifndef KDTREE_CC_TOOLS_KDRT_RECORD_H_
 #define KDTREE_CC_TOOLS_KDRT_RECORD_H_
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -57,6 +58,11 @@ inline constexpr char kSingleBvhLane[] = "kd-tree single bvh";
 // The fast mode's rays in its packets through the same BVH
 // (leaf_bvh_packet_kernel.cc): our second packet mode.
 inline constexpr char kPacketsBvhLane[] = "kd-tree packets bvh";
+// The same two modes' rays through a BVH of whole triangles, no kd-tree
+// (cc/kdtree/triangle_bvh.h; kdrt --triangle_bvh): a baseline, not one of our
+// modes, so no ratio of ours takes it.
+inline constexpr char kTriangleBvhLane[] = "triangle bvh single";
+inline constexpr char kTriangleBvhPacketsLane[] = "triangle bvh packets";
 inline constexpr char kEmbreeLane[] = "embree";
 inline constexpr char kEmbreePacketsLane[] = "embree packets";
 inline constexpr char kEmbreeRobustLane[] = "embree robust";
@@ -87,6 +93,15 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
 // Disagreements::ToJson against the kd-tree).
 void AddRobustEmbree(const std::vector<Lane>& lanes, const nlohmann::ordered_json& disagreements,
                      nlohmann::ordered_json* rec);
+
+// With the lanes kTriangleBvhLane and kTriangleBvhPacketsLane: adds
+// fast_render.triangle_bvh, their times, the hierarchy's build seconds and
+// bytes, and (with Embree's two lanes) Embree's single rays over the
+// baseline's and Embree's best mode over the baseline's faster lane, paired
+// per round as AddComparisons pairs ours: what the kd-tree's structure
+// costs, the kernels being the same.
+void AddTriangleBvh(const std::vector<Lane>& lanes, double build_s, size_t bytes,
+                    nlohmann::ordered_json* rec);
 
 // With the replay lanes (kReplayLane, kReplayPacketsLane, one thread) and
 // Embree's two: adds fast_render.passes, where the gap is, per pass (camera

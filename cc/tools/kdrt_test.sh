@@ -32,9 +32,15 @@ VIEW
   --max_leaf_size=1 > lit2.json
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=1 --cache_dir= --threads=1 \
   --max_leaf_size=1 --fast_render > lit1.json
-# The fast mode with Embree's rounds: its packets and its robust setting too.
+# The fast mode with Embree's rounds: its packets, its robust setting and
+# the baseline over whole triangles too.
 "$KDRT" --mesh=scene.obj --view=lit.view --repeats=2 --cache_dir= --fast_render \
-  --embree=medium > fastemb.json
+  --embree=medium --triangle_bvh > fastemb.json
+if "$KDRT" --mesh=scene.obj --view=lit.view --repeats=1 --cache_dir= --triangle_bvh \
+    > /dev/null 2> notri.err; then
+  echo "FAIL: --triangle_bvh without --fast_render was accepted"; exit 1
+fi
+grep -q -- "--triangle_bvh needs --fast_render" notri.err
 "$KDRT" --mesh=scene.obj --view=dark.view --repeats=1 --cache_dir= --fast_render \
   --embree=medium > fastdark.json
 # A budget of ~0 s: every timed step runs once although --repeats=4.
@@ -142,6 +148,17 @@ check(f["best_paired_ratio_runs"] == [min(e, p) / min(k, s, b, q, v) for e, p, k
       zip(fe["embree"]["T_R_runs"], f["embree_packets"]["T_R_runs"], fe["T_R_runs"],
           so["T_R_runs"], sb["T_R_runs"], f["T_R_runs"], pb["T_R_runs"])],
       "best mode: the fastest of each side, per round")
+tb = f["triangle_bvh"]
+check(len(tb["single"]["T_R_runs"]) == 2 and len(tb["packets"]["T_R_runs"]) == 2
+      and tb["build_s"] > 0 and tb["bytes"] > 0,
+      "the baseline over whole triangles timed in the same two rounds, its build and bytes")
+check(tb["best_paired_ratio_runs"] == [min(e, p) / min(s, q) for e, p, s, q in
+      zip(fe["embree"]["T_R_runs"], f["embree_packets"]["T_R_runs"], tb["single"]["T_R_runs"],
+          tb["packets"]["T_R_runs"])]
+      and tb["single_paired_ratio_runs"] == [e / s for e, s in
+      zip(fe["embree"]["T_R_runs"], tb["single"]["T_R_runs"])],
+      "the baseline against Embree, paired per round")
+check("triangle_bvh" not in fast, "no baseline unless asked for")
 check(rob["single_paired_ratio_runs"] == [e / min(k, s, b) for e, k, s, b in
       zip(rob["T_R_runs"], fe["T_R_runs"], so["T_R_runs"], sb["T_R_runs"])],
       "robust Embree against the fastest of our single rays, paired per round")
