@@ -156,7 +156,9 @@ def row(df, scene, recs):
                            ("fast", beyond, "fast_ratio"),
                            ("best", beyond, "best_ratio"),
                            ("robust_single", beyond, "robust_single_ratio"),
-                           ("robust_best", beyond, "robust_best_ratio")):
+                           ("robust_best", beyond, "robust_best_ratio"),
+                           ("tri_single", beyond, "tri_single_ratio"),
+                           ("tri_best", beyond, "tri_best_ratio")):
         out["ratio_" + key], out["runs_" + key] = paired(r, column)
     out["robust_wrong"] = (None if out["ratio_robust_single"] is None else
                            [int(beyond[c]) if kr.present(beyond[c]) else 0
@@ -357,7 +359,8 @@ def render_robust(data):
 SERIES = [("single", "SAH-4 (sah-packet), single rays", "o"),
           ("fast", "SAH-4, fastest mode (packets)", "s"),
           ("best", "best mode / Embree's best", "D"),
-          ("final", "Clipping pruning (the report's final)", "^")]
+          ("final", "Clipping pruning (the report's final)", "^"),
+          ("tri_best", "baseline: BVH of whole triangles, best mode / Embree's best", "v")]
 ROBUST_SERIES = [("single", "single rays / Embree's (default flags)", "o"),
                  ("robust_single", "single rays / robust Embree's", "s"),
                  ("best", "best mode / Embree's best (default flags)", "D"),
@@ -371,7 +374,8 @@ def figure(ctx, data, filename="embree_ratio.pdf", series=SERIES):
         fig, ax = plt.subplots(figsize=(6.3, 3.4))
         xs = list(range(1, len(data) + 1))
         for k, (key, label, marker) in enumerate(series):
-            pts = [(x + 0.18 * (k - 1.5), r["ratio_" + key], r["runs_" + key] or [r["ratio_" + key]])
+            shift = 0.15 * (k - (len(series) - 1) / 2)
+            pts = [(x + shift, r["ratio_" + key], r["runs_" + key] or [r["ratio_" + key]])
                    for x, r in zip(xs, data) if r["ratio_" + key] is not None]
             if pts:
                 ys = [y for _, y, _ in pts]

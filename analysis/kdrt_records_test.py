@@ -103,14 +103,21 @@ def kdrt_on_the_mesh(mesh, view, directory):
         yield
 
 
+def matrix_settings():
+    """A profile with Embree, as run_matrix makes its settings."""
+    matrix = run_matrix.load_matrix()
+    return {"repeats": REPEATS, "threads": 1, "embree": "medium",
+            "fast_render": matrix["fast_render_variants"],
+            "embree_timed": matrix["embree_timed_variants"],
+            "triangle_bvh": matrix["triangle_bvh_variants"], "source_tree": TREE}
+
+
 def run_the_matrix(kdrt, directory):
     """run_matrix.run_local over every variant on the generated scene, as a
     profile with Embree; returns the results file it appended to."""
     mesh, view = write_scene(directory)
     matrix = run_matrix.load_matrix()
-    settings = {"repeats": REPEATS, "threads": 1, "embree": "medium",
-                "fast_render": matrix["fast_render_variants"],
-                "embree_timed": matrix["embree_timed_variants"], "source_tree": TREE}
+    settings = matrix_settings()
     pending = [(SCENE, mesh, v) for v in matrix["variants"] + matrix["beyond_variants"]]
     out = os.path.join(directory, "out")
     os.makedirs(os.path.join(out, "results"))
@@ -139,8 +146,7 @@ class KdrtRecordsTest(unittest.TestCase):
         with open(cls.manifest, "w") as f:
             json.dump({"scenes": [{"name": SCENE}]}, f)
         cls.schema = record_schema.load()
-        cls.settings = {"embree": "medium",
-                        "embree_timed": run_matrix.load_matrix()["embree_timed_variants"]}
+        cls.settings = matrix_settings()
 
     def setUp(self):
         self.out = tempfile.mkdtemp(dir=self.tmp.name)
@@ -169,9 +175,14 @@ class KdrtRecordsTest(unittest.TestCase):
         for rec in self.records.values():
             added = set(rec) - set(self.schema["kdrt"])
             self.assertEqual(added, set(self.schema["run_matrix"]))
-            self.assertEqual(rec["job"], [SCENE, rec["preset"], REPEATS, 1,
-                                      run_matrix.embree_mode(rec["preset"], self.settings),
-                                      TREE])
+            self.assertEqual(rec["job"][:6], [SCENE, rec["preset"], REPEATS, 1,
+                                              run_matrix.embree_mode(rec["preset"], self.settings),
+                                              TREE])
+            self.assertEqual(rec["job"],
+                             list(run_matrix.job_key(SCENE, rec["preset"], self.settings)))
+            fast = rec["fast_render"] or {}
+            self.assertEqual("triangle_bvh" in fast,
+                             run_matrix.wants_triangle_bvh(rec["preset"], self.settings))
             self.assertEqual(rec["provenance"]["source_tree"], TREE)
             self.assertEqual(rec["provenance"]["commit"], COMMIT)
 

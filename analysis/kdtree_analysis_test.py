@@ -37,7 +37,8 @@ class KdtreeAnalysisTest(testdata.KdtreeFixtureTest):
             fast_render=testdata.fast_render(
                 [1.2], best=[0.9], robust=([0.8], [0.9], 0), single=[0.8],
                 passes={p: [0.7] for p in ("camera_single", "shadow_single",
-                                           "camera_packets", "shadow_packets")}))
+                                           "camera_packets", "shadow_packets")},
+                tri=([0.8], [1.0], 4000)))
         missing = [name for name in kr.FIELDS
                    if kr.field(rec, name) is None]
         self.assertEqual(missing, [])

@@ -100,6 +100,15 @@ FIELDS = {
     "camera_packets_ratio_runs": "fast_render.passes.camera_packets.paired_ratio_runs",
     "shadow_packets_ratio": "fast_render.passes.shadow_packets.paired_ratio",
     "shadow_packets_ratio_runs": "fast_render.passes.shadow_packets.paired_ratio_runs",
+    # A baseline, not one of our modes (kdrt --triangle_bvh, matrix
+    # triangle_bvh_variants; since 2026-12-07): the same kernels over a BVH
+    # of whole triangles, timed in the same rounds; Embree's single rays over
+    # its single rays, Embree's best mode over its faster lane, its bytes.
+    "tri_single_ratio": "fast_render.triangle_bvh.single_paired_ratio",
+    "tri_single_ratio_runs": "fast_render.triangle_bvh.single_paired_ratio_runs",
+    "tri_best_ratio": "fast_render.triangle_bvh.best_paired_ratio",
+    "tri_best_ratio_runs": "fast_render.triangle_bvh.best_paired_ratio_runs",
+    "tri_bytes": "fast_render.triangle_bvh.bytes",
     "robust_wrong_primary": "fast_render.embree_robust.wrong.primary",
     "robust_wrong_shadow": "fast_render.embree_robust.wrong.shadow",
     # Its disagreements with our tree, and those of them at a ray's origin

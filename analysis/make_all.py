@@ -36,6 +36,7 @@ from analysis import cost_images  # noqa: E402
 from analysis import embree  # noqa: E402
 from analysis import embree_build  # noqa: E402
 from analysis import embree_passes  # noqa: E402
+from analysis import embree_structure  # noqa: E402
 from analysis import figures  # noqa: E402
 from analysis import gallery  # noqa: E402
 from analysis import kdtree_figures  # noqa: E402
@@ -67,6 +68,7 @@ GENERATORS = [
     embree,
     embree_build,
     embree_passes,
+    embree_structure,
     tree_memory,
     accuracy,
     robustness,

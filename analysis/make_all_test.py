@@ -8,6 +8,7 @@ import unittest
 from analysis import accuracy
 from analysis import clipping_errata
 from analysis import embree_passes
+from analysis import embree_structure
 from analysis import make_all
 from analysis import provenance_macros
 from analysis import robustness
@@ -56,7 +57,8 @@ EXPECTED_MACROS = [
     "OursOverFinalScenes", "OursOverFinalRatioMedian", "OursOverFinalRatioMin",
     "OursOverFinalRatioMax", "OursFastOverFinalScenes", "OursFastOverFinalRatioMedian",
     "OursFastOverFinalRatioMin", "OursFastOverFinalRatioMax",
-] + tree_memory.MACROS + embree_passes.MACROS + clipping_errata.MACROS + \
+] + tree_memory.MACROS + embree_passes.MACROS + embree_structure.MACROS + \
+    clipping_errata.MACROS + \
     robustness.MACROS + accuracy.MACROS + seed_tables.COMPARE_MACROS + \
     provenance_macros.MACROS
 

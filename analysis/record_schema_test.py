@@ -60,6 +60,17 @@ class ValidatorTest(unittest.TestCase):
         self.assertEqual(self.errors(rec),
                          ["timing.phases_s.counting pass: expected number, got str 'long'"])
 
+    def test_every_fast_render_member_of_the_fixtures_is_declared(self):
+        fast = testdata.fast_render(
+            [1.1, 1.2], best=[0.9, 1.0], robust=([0.8, 0.9], [0.9, 1.0], 3),
+            single=[0.8, 0.85],
+            passes={p: [0.9, 1.0] for p in ("camera_single", "shadow_single",
+                                            "camera_packets", "shadow_packets")},
+            tri=([0.85, 0.9], [1.0, 1.1], 4000))
+        rec = testdata.kdrt_record("a", "sah-packet", embree=testdata.embree(0.2, [0.7, 0.8]),
+                                   fast_render=fast)
+        self.assertEqual(self.errors(rec), [])
+
     def test_the_runner_fields_are_a_section_of_their_own(self):
         rec = testdata.kdrt_record("a", "clipping")
         self.assertEqual(sorted(self.errors(rec, ["kdrt"])),

@@ -263,14 +263,16 @@ def kdrt_record(scene, preset, added=None, **over):
     return rec
 
 
-def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=None):
+def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=None,
+                tri=None):
     """kdrt's "fast_render" object with its paired ratios to Embree (and,
     with `best`, Embree's packets and the best-mode ratios per round; with
     `robust`, (single-ray ratios, best-mode ratios, wrong shadow rays) of
     Embree built with RTC_SCENE_FLAG_ROBUST; with `single`, our other
     single-ray modes and Embree's single rays over the fastest of ours; with
     `passes`, {pass: [ratio per round]} for the passes camera_single,
-    shadow_single, camera_packets and shadow_packets)."""
+    shadow_single, camera_packets and shadow_packets; with `tri`, (single-ray
+    ratios, best-mode ratios, bytes) of the baseline over whole triangles)."""
     ratios = list(ratios)
     out = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios), "primary_s": t_r / 2,
            "shadow_s": t_r / 2, "packet_kernel": "AVX3"}
@@ -304,6 +306,17 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=No
             "best_paired_ratio": statistics.median(best_r), "disagreements": wrong,
             "disagreements_at_origin": wrong - 1,
             "wrong": {"primary": 0, "shadow": wrong, "ao": 0}}
+    if tri is not None:
+        tri_single, tri_best, tri_bytes = tri
+        lane = {"T_R": t_r, "T_R_runs": [t_r] * len(tri_single), "primary_s": t_r / 2,
+                "shadow_s": t_r / 2, "primary_s_runs": [t_r / 2] * len(tri_single),
+                "shadow_s_runs": [t_r / 2] * len(tri_single)}
+        out["triangle_bvh"] = {
+            "single": dict(lane), "packets": dict(lane), "build_s": 0.01, "bytes": tri_bytes,
+            "single_paired_ratio_runs": list(tri_single),
+            "single_paired_ratio": statistics.median(tri_single),
+            "best_paired_ratio_runs": list(tri_best),
+            "best_paired_ratio": statistics.median(tri_best)}
     if passes is not None:
         n = len(ratios)
         out["passes"] = {

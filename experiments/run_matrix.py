@@ -70,9 +70,23 @@ def job_key(scene, variant, settings):
     identity when the plan was made)."""
     key = (scene, variant, int(settings["repeats"]), int(settings["threads"]),
            embree_mode(variant, settings), settings.get("source_tree"))
-    # A run that writes a cost image is another job (an older run of the
-    # same code without one is not done).
+    # A run that times more, or writes a cost image, is another job (an
+    # older run of the same code without it is not done): matrix.json is not
+    # part of the source tree.
+    if variant in settings.get("fast_render", []):
+        key += ("fast_render",)
+    if wants_triangle_bvh(variant, settings):
+        key += ("triangle_bvh",)
     return key + ("cost_image",) if wants_cost_image(scene, settings) else key
+
+
+def wants_triangle_bvh(variant, settings):
+    """Whether kdrt also times the baseline over whole triangles (matrix.json's
+    triangle_bvh_variants, in the fast mode, with Embree timed: its ratios
+    are to Embree)."""
+    return (variant in settings.get("triangle_bvh", [])
+            and variant in settings.get("fast_render", [])
+            and settings["embree"] != "off" and embree_timed(variant, settings))
 
 
 def wants_cost_image(scene, settings):
@@ -143,6 +157,10 @@ def kdrt_command(kdrt, scene, variant, settings, image=None, cost_image=None):
         # Also the renderer's fastest mode (kdrt --fast_render: record field
         # fast_render, the analysis's T_R_fast).
         cmd += ["--fast_render"]
+    if wants_triangle_bvh(variant, settings):
+        # And the same kernels over a BVH of whole triangles (record field
+        # fast_render.triangle_bvh): what the kd-tree's structure costs.
+        cmd += ["--triangle_bvh"]
     if cost_image:
         cmd += ["--cost_image", cost_image]
     return cmd + ["--image", image] if image else cmd
@@ -373,6 +391,7 @@ def main(argv=None):
     settings = dict(matrix["profiles"][args.profile])
     settings["fast_render"] = matrix.get("fast_render_variants", [])
     settings["embree_timed"] = matrix.get("embree_timed_variants")
+    settings["triangle_bvh"] = matrix.get("triangle_bvh_variants", [])
     settings["cost_images"] = matrix.get("cost_image_scenes", [])
     if args.repeats:
         settings["repeats"] = args.repeats

@@ -145,6 +145,22 @@ class RunMatrixTest(unittest.TestCase):
                          run_matrix.job_key("bunny", "pruning", dict(s, cost_images=[])))
         self.assertIn("city", run_matrix.load_matrix()["cost_image_scenes"])
 
+    def test_triangle_bvh_only_in_the_fast_mode_with_embree_timed(self):
+        s = {"repeats": 1, "threads": 1, "embree": "medium", "source_tree": "t",
+             "fast_render": ["sah-packet", "sah-packet-binned"],
+             "embree_timed": ["sah-packet", "sah-packet-binned"], "triangle_bvh": ["sah-packet"]}
+        self.assertIn("--triangle_bvh", run_matrix.kdrt_command("k", "a", "sah-packet", s))
+        self.assertNotIn("--triangle_bvh",
+                         run_matrix.kdrt_command("k", "a", "sah-packet-binned", s))
+        for other in (dict(s, embree="off"), dict(s, embree_timed=[]), dict(s, fast_render=[])):
+            self.assertNotIn("--triangle_bvh", run_matrix.kdrt_command("k", "a", "sah-packet", other))
+        # A run with more timed lanes is another job than one without.
+        self.assertNotEqual(run_matrix.job_key("a", "sah-packet", s),
+                            run_matrix.job_key("a", "sah-packet", dict(s, triangle_bvh=[])))
+        self.assertNotEqual(run_matrix.job_key("a", "sah-packet", s),
+                            run_matrix.job_key("a", "sah-packet", dict(s, fast_render=[])))
+        self.assertEqual(run_matrix.load_matrix()["triangle_bvh_variants"], ["sah-packet"])
+
     def test_embree_timed_only_on_the_listed_variants(self):
         s = {"repeats": 1, "threads": 1, "embree": "medium",
              "embree_timed": ["clipping-pruning"], "source_tree": "t"}
