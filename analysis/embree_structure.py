@@ -81,6 +81,10 @@ def _fmt(cell):
     return "%.2f {\\scriptsize (%.2f--%.2f)}" % cell
 
 
+def _median(cell):
+    return "%.2f" % cell[0] if cell is not None else latex.DASH
+
+
 def _bytes(v):
     return "%.0f" % v if v is not None else latex.DASH
 
@@ -90,8 +94,8 @@ def render(data):
     header = ["Scene", "$N_{tri}$", "kd-tree", "baseline", "kd-tree", "baseline",
               "kd-tree", "baseline", "Embree"]
     body = [[latex.escape(r["scene"]), latex.fmt_int(r["n_tri"]),
-             _fmt(r["kd_best"]), _fmt(r["tri_best"]), _fmt(r["kd_single"]),
-             _fmt(r["tri_single"]), _bytes(r["kd_bytes"]), _bytes(r["tri_bytes"]),
+             _fmt(r["kd_best"]), _fmt(r["tri_best"]), _median(r["kd_single"]),
+             _median(r["tri_single"]), _bytes(r["kd_bytes"]), _bytes(r["tri_bytes"]),
              _bytes(r["embree_bytes"])] for r in data]
     if not body:
         body = [["\\emph{no runs with the baseline}"] + [""] * (len(header) - 1)]
@@ -102,7 +106,7 @@ def render(data):
                "against Embree~3 (MEDIUM build, one thread) on the same rays in "
                "the same rounds. A ratio is the median over the rounds of "
                "Embree's render time over ours in the same round (above 1: ours "
-               "is the faster), with the rounds' range. Best mode: per round the "
+               "is the faster), in best mode with the rounds' range. Best mode: per round the "
                "faster of Embree's single rays and its 16-ray packets over the "
                "fastest of our tree's five modes, or over the faster of the "
                "baseline's two (the fast mode's rays one at a time and in its "
