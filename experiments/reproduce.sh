@@ -48,6 +48,19 @@ SCENE_INFO="$BIN/cc/tools/scene_info"
 KDTREE_SOURCE_ID="$(sh cc/base/source_id.sh "$ROOT")"
 export KDTREE_SOURCE_ID
 echo "reproduce: code $KDTREE_SOURCE_ID (commit, dirty, source tree)"
+# Binaries built later in the run (the robustness step's) must be the code
+# the records name: refuse to build them from a checkout whose sources
+# changed since the pin above.
+same_sources() {
+  local now
+  now="$(sh cc/base/source_id.sh "$ROOT")"
+  if [ "${now##* }" != "${KDTREE_SOURCE_ID##* }" ]; then
+    echo "reproduce: the sources changed since this run began (source tree" \
+      "${KDTREE_SOURCE_ID##* }, now ${now##* }); $1 would not be the code the" \
+      "records name. Rerun reproduce.sh once the checkout is settled." >&2
+    return 1
+  fi
+}
 
 step "load scenes (scene_info)"
 "$PY" experiments/run_scenes.py --profile "$PROFILE" --out "$OUT" \
@@ -92,6 +105,7 @@ ROBUST_ARGS=(--out "$RESULTS/robust.jsonl" --cost_out "$RESULTS/robust_cost.json
 ROBUST_TARGETS="$("$PY" cc/robust/robust_suite.py "${ROBUST_ARGS[@]}" --cost --print_targets)" || \
   ROBUST_TARGETS="//cc/robust:robust_suite //cc/robust:robust_cost_bench"
 if [ -n "$ROBUST_TARGETS" ]; then
+  same_sources "the robustness binaries" || exit 1
   # shellcheck disable=SC2086
   bazel build --config=opt $ROBUST_TARGETS
   ROBUST_BIN="$BIN/cc/robust"
