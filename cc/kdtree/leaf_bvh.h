@@ -83,7 +83,24 @@
 //  - a tree with the per-triangle leaf cost (sahPacket 1) instead of
 //    per packet of four, K_T 20, 45 or 80, traced as kd_bvh_packet
 //    (--envs, 5 paired rounds, the seven scenes above; 2026-12-07): renders
-//    0.98-1.42, 0.99-1.15 and 0.97-1.05 times as long as sah-packet's.
+//    0.98-1.42, 0.99-1.15 and 0.97-1.05 times as long as sah-packet's;
+//  - leaves without most duplicates: a triangle whose box reaches past the
+//    cell of its vertices' centroid by at most r of the cell's extent on
+//    every axis kept once, whole, in that leaf (its box grown to hold it),
+//    the others in every leaf as here (exact as here: the owner's box holds
+//    the triangle); the same kernels, render_bench in one process per r
+//    (the variant beside kd_bvh_packet, 5 paired rounds; bunny, city2,
+//    lost-empire, morse-indoor, teapots, courtyard-1m; 2026-12-07).
+//    kd_bvh_packet's time over the variant's: r = 0.25, bunny 1.08 and
+//    0.98-1.005 elsewhere; r = 1, bunny 1.08, teapots 1.04, city2 0.91;
+//    every triangle owned, bunny 1.06, teapots 1.08, city2 0.85,
+//    courtyard-1m 0.94; r = 0 (almost nothing owned; the control)
+//    0.98-1.02. Camera packets' triangle steps fell from 22.4 to 16.3 on
+//    bunny and rose from 9.6 to 21.9 on city2 (its large triangles' whole
+//    boxes overlap), and stayed within 10 % elsewhere: the kd leaves hold
+//    many triangles in a small cell whether or not they are duplicates, so
+//    what the BVH of whole triangles (triangle_bvh.h) gains is its
+//    partition more than the single reference.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 

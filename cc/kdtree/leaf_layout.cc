@@ -19,18 +19,16 @@ constexpr size_t kChunkNodes = 16384;
 
 uint32_t PacketsOf(uint32_t count) { return (count + kPacketLanes - 1) / kPacketLanes; }
 
-// Writes the packets of leaf `node` (count > 0) at `out` (16-byte aligned). A
-// packet's 36 vertex floats are the transpose of its 4 triangles' 9 floats
-// each (float f of lane l at f * 4 + l): two 4x4 transposes and a column,
-// with zero rows for padding lanes. Non-temporal stores: the packets (hundreds
+// Writes the packets of the `count` > 0 triangles `tris` at `out` (16-byte
+// aligned). A packet's 36 vertex floats are the transpose of its 4
+// triangles' 9 floats each (float f of lane l at f * 4 + l): two 4x4
+// transposes and a column, with zero rows for padding lanes. Non-temporal stores: the packets (hundreds
 // of megabytes on the large scenes) are written whole and not read back by
 // the build, so they bypass the caches and skip the read of each line before
 // it is written (the caller fences).
-void WriteLeaf(const ListTree& tree, const Vec3* vertices, const KdNode& node, float* out) {
+void WriteLeafPacketsOf(const Vec3* vertices, const uint32_t* tris, uint32_t count, float* out) {
   static_assert(kPacketLanes == 4 && kPacketIds == 36, "the transpose below is 4 x 9");
   static_assert(sizeof(Vec3) == 3 * sizeof(float), "a triangle is 9 packed floats");
-  const uint32_t count = tree.LeafCount(node);
-  const uint32_t* tris = tree.LeafBegin(node);
   const uint32_t packets = PacketsOf(count);
   static const float kZero[9] = {};
   const float* verts = reinterpret_cast<const float*>(vertices);
@@ -57,6 +55,11 @@ void WriteLeaf(const ListTree& tree, const Vec3* vertices, const KdNode& node, f
     _mm_stream_si128(reinterpret_cast<__m128i*>(out + kPacketIds),
                      _mm_load_si128(reinterpret_cast<const __m128i*>(id)));
   }
+}
+
+// The packets of leaf `node` of the lists.
+void WriteLeaf(const ListTree& tree, const Vec3* vertices, const KdNode& node, float* out) {
+  WriteLeafPacketsOf(vertices, tree.LeafBegin(node), tree.LeafCount(node), out);
 }
 
 // Runs body(chunk) for every chunk, on the calling thread or as tasks.
@@ -138,6 +141,11 @@ void ForEachLeafTriangle(const KdTree& tree, const KdNode& leaf, const F& f) {
 }
 
 }  // namespace
+
+void WriteLeafPackets(const Vec3* verts, const uint32_t* ids, size_t count, float* out) {
+  WriteLeafPacketsOf(verts, ids, static_cast<uint32_t>(count), out);
+  _mm_sfence();  // its streaming stores are seen by whoever reads the packets next
+}
 
 std::vector<uint32_t> LeafTriangles(const KdTree& tree, const KdNode& leaf) {
   std::vector<uint32_t> tris;

@@ -58,6 +58,12 @@ inline constexpr uint32_t kEmptyLeaf = KdNode::kMaxIndex;  // an empty leaf's in
 // caller's task arena); the layout is the same either way.
 bool LayoutLeafTriangles(const ListTree& lists, const Vec3* verts, bool parallel, KdTree* out);
 
+// Writes the packets of one leaf of `count` > 0 triangles, `ids` into the
+// soup's vertices (3 per triangle, `verts`), at `out` (PacketsOf(count)
+// packets): the hierarchy over whole triangles (triangle_bvh.h), which
+// holds no list tree.
+void WriteLeafPackets(const Vec3* verts, const uint32_t* ids, size_t count, float* out);
+
 // The triangles of leaf `leaf` of `tree`, in list order, and their number.
 std::vector<uint32_t> LeafTriangles(const KdTree& tree, const KdNode& leaf);
 uint32_t LeafTriangleCount(const KdTree& tree, const KdNode& leaf);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "cc/kdtree/builder.h"
@@ -185,27 +184,14 @@ class Builder {
       packets += PacketsOf(n.count);
     }
     out_->leaves.leaf_soa.assign(static_cast<size_t>(packets) * kPacketFloats, 0.0f);
+    std::vector<uint32_t> ids;
     for (const Node& n : nodes_) {
       if (!n.leaf) continue;
-      float* out = out_->leaves.leaf_soa.data() + static_cast<size_t>(n.first_packet) * kPacketFloats;
-      for (uint32_t j = 0; j < PacketsOf(n.count); ++j, out += kPacketFloats) {
-        uint32_t id[kPacketLanes];
-        for (int lane = 0; lane < kPacketLanes; ++lane) {
-          const uint32_t k = j * kPacketLanes + static_cast<uint32_t>(lane);
-          id[lane] = kPadLane;  // and zero vertices
-          if (k >= n.count) continue;
-          const uint32_t t = order_[order_index_[n.begin + k]];
-          const Vec3 v[3] = {soup_.a(t), soup_.b(t), soup_.c(t)};
-          for (int vertex = 0; vertex < 3; ++vertex) {
-            for (int axis = 0; axis < 3; ++axis) {
-              out[(3 * vertex + axis) * kPacketLanes + lane] = v[vertex][axis];
-            }
-          }
-          id[lane] = t;
-        }
-        if (j + 1 == PacketsOf(n.count)) id[0] |= kLastPacket;
-        std::memcpy(out + kPacketIds, id, sizeof(id));
-      }
+      ids.clear();
+      for (uint32_t k = 0; k < n.count; ++k) ids.push_back(order_[order_index_[n.begin + k]]);
+      WriteLeafPackets(soup_.v.data(), ids.data(), ids.size(),
+                       out_->leaves.leaf_soa.data() +
+                           static_cast<size_t>(n.first_packet) * kPacketFloats);
     }
   }
 
