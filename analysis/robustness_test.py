@@ -22,6 +22,7 @@ SUITE = (
     + [cmp_rec("axis_rays/tiny", 1, "pruning-seed", "watertight", 1000,
                mismatches=7, required=False),
        cmp_rec("stairs/dyadic", 3, "default", "watertight", 20000),
+       cmp_rec("axis_rays/tiny", 1, "triangle-bvh", "watertight", 3000, mismatches=2),
        {"case": "watertight_sphere/origin", "hard_case": 5, "mode":
         "watertight", "random_rays": 100, "random_misses": 0,
         "vertex_rays": 10, "vertex_misses": 0, "edge_midpoint_rays": 30,
@@ -127,6 +128,9 @@ class RobustnessTest(unittest.TestCase):
         self.assertEqual(macros["RobustCases"], ("2", False))
         self.assertEqual(macros["RobustCasesPassed"], ("1", False))
         self.assertEqual(macros["RobustPresets"], ("10", False))
+        # The baseline: a row of its own, outside the presets' totals.
+        self.assertEqual(macros["RobustBaselineRays"], ("3,000", False))
+        self.assertEqual(macros["RobustBaselineMismatches"], ("2", False))
         self.assertEqual(macros["RobustSphereRays"], ("140", False))
         self.assertEqual(macros["RobustSphereMisses"], ("0", False))
         self.assertEqual(macros["RobustFastSphereMisses"], ("6", False))
@@ -144,6 +148,9 @@ class RobustnessTest(unittest.TestCase):
         cases = self.read("robust_cases.tex")
         self.assertIn("2,000 / 0", cases)      # a preset of case 1
         self.assertIn("1,000 / 7", cases)      # the seed mode
+        self.assertIn("BVH of whole triangles (baseline) & 3,000 / 2", cases)
+        self.assertLess(cases.index("Pruning, seed mode &"),
+                        cases.index("BVH of whole triangles (baseline) &"))
         self.assertIn("20.0k / 0", cases)      # stairs, default
         self.assertIn("\\textbf{no}", cases)   # case 3's binary failed
         self.assertIn("tab:robust-sphere", self.read("robust_sphere.tex"))

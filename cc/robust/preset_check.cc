@@ -16,6 +16,7 @@
 #include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
+#include "cc/kdtree/triangle_bvh.h"
 #include "nlohmann/json.hpp"
 
 namespace kdtree {
@@ -75,6 +76,42 @@ bool SameHit(const Hit& a, const Hit& b) {
   if (a.hit() != b.hit()) return false;
   return !a.hit() || (a.tri == b.tri && a.t == b.t && a.u == b.u && a.v == b.v);
 }
+
+// The leaf-BVH queries (leaf_bvh.h) through (`leaves`, `bvh`), closest and
+// any hit, single rays and packets of kRayPacketSize consecutive rays: marks
+// in *bad and *bad_any the rays whose answers differ from `reference`.
+void CheckLeafBvh(const KdTree& leaves, const LeafBvh& bvh, const std::vector<Ray>& rays,
+                  const std::vector<Hit>& reference, std::vector<char>* bad,
+                  std::vector<char>* bad_any) {
+  ParallelFor(rays.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      (*bad)[i] |= !SameHit(IntersectLeafBvh(leaves, bvh, rays[i]), reference[i]);
+      (*bad_any)[i] |= OccludedLeafBvh(leaves, bvh, rays[i]) != reference[i].hit();
+    }
+    for (size_t i = begin; i < end; i += kRayPacketSize) {
+      const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, end - i));
+      Hit hits[kRayPacketSize];
+      bool occluded[kRayPacketSize];
+      IntersectPacketLeafBvh(leaves, bvh, &rays[i], n, hits);
+      OccludedPacketLeafBvh(leaves, bvh, &rays[i], n, nullptr, occluded);
+      for (int l = 0; l < n; ++l) {
+        (*bad)[i + l] |= !SameHit(hits[l], reference[i + l]);
+        (*bad_any)[i + l] |= occluded[l] != reference[i + l].hit();
+      }
+    }
+  });
+}
+
+// The counts of r from the rays marked bad.
+void Tally(const std::vector<Hit>& reference, const std::vector<char>& bad,
+           const std::vector<char>& bad_any, CheckResult* r) {
+  for (size_t i = 0; i < reference.size(); ++i) {
+    r->hits += reference[i].hit();
+    r->mismatches += bad[i];
+    r->any_hit_mismatches += bad_any[i];
+    if ((bad[i] || bad_any[i]) && r->examples.size() < 5) r->examples.push_back(i);
+  }
+}
 }  // namespace
 
 CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
@@ -88,19 +125,12 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
   // Any hit searched from the ray's end too (the renderer's secondary rays).
   TraversalOptions from_end = options;
   from_end.from_end = true;
-  // The BVH over the tree's leaves (leaf_bvh.h), watertight test only.
-  const bool bvh_applies = mode == IntersectionMode::kWatertight;
-  const LeafBvh bvh = bvh_applies ? BuildLeafBvh(tree) : LeafBvh();
   ParallelFor(rays.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       const Hit got = Intersect(tree, rays[i], WithTest(mode));
       bad[i] = !SameHit(got, reference[i]);
       bad_any[i] = Occluded(tree, rays[i], WithTest(mode)) != reference[i].hit();
       bad_any[i] |= Occluded(tree, rays[i], from_end) != reference[i].hit();
-      if (bvh_applies) {
-        bad[i] |= !SameHit(IntersectLeafBvh(tree, bvh, rays[i]), reference[i]);
-        bad_any[i] |= OccludedLeafBvh(tree, bvh, rays[i]) != reference[i].hit();
-      }
     }
     // The packet traversal (ray_packet.h) on consecutive rays, kRayPacketSize
     // (16) at a time:
@@ -112,29 +142,35 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
       IntersectPacket(tree, &rays[i], n, hits, options);
       OccludedPacket(tree, &rays[i], n, nullptr, occluded, options);
       OccludedPacket(tree, &rays[i], n, nullptr, occluded_end, from_end);
-      Hit bvh_hits[kRayPacketSize];
-      bool bvh_occluded[kRayPacketSize];
-      if (bvh_applies) {
-        IntersectPacketLeafBvh(tree, bvh, &rays[i], n, bvh_hits);
-        OccludedPacketLeafBvh(tree, bvh, &rays[i], n, nullptr, bvh_occluded);
-      }
       for (int l = 0; l < n; ++l) {
         bad[i + l] |= !SameHit(hits[l], reference[i + l]);
         bad_any[i + l] |= occluded[l] != reference[i + l].hit();
         bad_any[i + l] |= occluded_end[l] != reference[i + l].hit();
-        if (bvh_applies) {
-          bad[i + l] |= !SameHit(bvh_hits[l], reference[i + l]);
-          bad_any[i + l] |= bvh_occluded[l] != reference[i + l].hit();
-        }
       }
     }
   });
-  for (size_t i = 0; i < rays.size(); ++i) {
-    r.hits += reference[i].hit();
-    r.mismatches += bad[i];
-    r.any_hit_mismatches += bad_any[i];
-    if ((bad[i] || bad_any[i]) && r.examples.size() < 5) r.examples.push_back(i);
+  // The BVH over the tree's leaves (leaf_bvh.h), watertight test only.
+  if (mode == IntersectionMode::kWatertight) {
+    CheckLeafBvh(tree, BuildLeafBvh(tree), rays, reference, &bad, &bad_any);
   }
+  Tally(reference, bad, bad_any, &r);
+  return r;
+}
+
+CheckResult CheckTriangleBvh(const TriangleSoup& soup, const std::vector<Ray>& rays,
+                             const std::vector<Hit>& reference) {
+  CheckResult r;
+  r.preset = kTriangleBvhRow;
+  r.rays = rays.size();
+  const absl::StatusOr<TriangleBvh> tb = BuildTriangleBvh(soup);
+  if (!tb.ok()) {
+    std::printf("%s: build failed: %s\n", kTriangleBvhRow, tb.status().ToString().c_str());
+    r.mismatches = rays.size();  // a failed build fails the check
+    return r;
+  }
+  std::vector<char> bad(rays.size(), 0), bad_any(rays.size(), 0);
+  CheckLeafBvh(tb->leaves, tb->bvh, rays, reference, &bad, &bad_any);
+  Tally(reference, bad, bad_any, &r);
   return r;
 }
 
@@ -198,6 +234,17 @@ std::vector<CheckResult> Check(const std::string& case_name, const TriangleSoup&
       std::printf("ROBUST_JSON %s\n", ResultJson(case_name, r).c_str());
       results.push_back(std::move(r));
     }
+  }
+  for (size_t m = 0; m < modes.size() && options.triangle_bvh; ++m) {
+    if (modes[m] != IntersectionMode::kWatertight) continue;
+    CheckResult r = CheckTriangleBvh(soup, rays, *references[m]);
+    for (size_t i : r.examples) {
+      std::printf("%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a)\n",
+                  case_name.c_str(), kTriangleBvhRow, i, rays[i].origin.x, rays[i].origin.y,
+                  rays[i].origin.z, rays[i].dir.x, rays[i].dir.y, rays[i].dir.z);
+    }
+    std::printf("ROBUST_JSON %s\n", ResultJson(case_name, r).c_str());
+    results.push_back(std::move(r));
   }
   std::fflush(stdout);
   return results;

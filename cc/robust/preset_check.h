@@ -82,12 +82,24 @@ std::vector<Hit> BruteForceHits(const TriangleSoup& soup, const std::vector<Ray>
 CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
                       const std::vector<Hit>& reference, IntersectionMode mode);
 
+// The row of the BVH of whole triangles (cc/kdtree/triangle_bvh.h): the
+// baseline the report sets beside the kd-tree against Embree, not a preset.
+inline constexpr char kTriangleBvhRow[] = "triangle-bvh";
+
+// The baseline over `soup`, with the watertight test, against `reference`:
+// closest and any hit, single rays and packets (preset kTriangleBvhRow).
+CheckResult CheckTriangleBvh(const TriangleSoup& soup, const std::vector<Ray>& rays,
+                             const std::vector<Hit>& reference);
+
 struct CheckOptions {
   // Also run the seed-compatible "pruning-seed" preset, reported but not
   // required to pass (it loses triangles lying in split planes by design).
   bool include_seed = false;
   // Build every tree with these options only (a subset of CheckedPresets()).
   std::vector<std::string> presets;
+  // Also check the baseline (CheckTriangleBvh) in the watertight mode, as a
+  // row of its own after the presets'.
+  bool triangle_bvh = true;
 };
 
 // Builds every preset over `soup` and checks it on the Sample() of `rays`

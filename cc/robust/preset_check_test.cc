@@ -35,7 +35,10 @@ TEST(RaySample, EveryThirdPacketIsChecked) {
   options.presets = {"default", "sah-packet"};
   const std::vector<CheckResult> results =
       CheckAllPresets("sample", soup, rays, BothModes(), options);
-  ASSERT_EQ(results.size(), 4u);
+  // Two presets in two modes, then the baseline in the watertight one.
+  ASSERT_EQ(results.size(), 5u);
+  EXPECT_EQ(results.back().preset, kTriangleBvhRow);
+  EXPECT_EQ(results.back().mode, IntersectionMode::kWatertight);
   for (const CheckResult& r : results) {
     EXPECT_EQ(r.rays, 36u);  // packets 0, 3 and 6 of 7
     EXPECT_EQ(r.mismatches, 0u);
