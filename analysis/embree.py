@@ -113,6 +113,23 @@ def paired(r, column):
     return float(r[column]), [float(x) for x in runs] if isinstance(runs, list) else []
 
 
+def ratio_cell(r, column):
+    """(paired median, lowest, highest round) of a ratio column, or None
+    without one (a record without its rounds gives its median thrice)."""
+    median, runs = paired(r, column)
+    if median is None:
+        return None
+    runs = runs or [median]
+    return median, min(runs), max(runs)
+
+
+def fmt_cell(cell):
+    """A ratio_cell as the tables print it: the median, the range smaller."""
+    if cell is None:
+        return latex.DASH
+    return "%.2f {\\scriptsize (%.2f--%.2f)}" % cell
+
+
 def _with_embree(df, scene, variant):
     """The record of (scene, variant) when Embree was timed beside it."""
     r = _compared(df, scene, variant)

@@ -41,14 +41,6 @@ MACROS = ["EmbreePass%s%s" % (name, what) for _, name, _ in PASSES
           for what in ("Median", "Scenes")] + ["EmbreePassWeakestClause"]
 
 
-def _cell(r, prefix):
-    """(paired median, lowest, highest round) of one pass; None without."""
-    median, runs = embree.paired(r, prefix + "_ratio")
-    if median is None or not runs:
-        return None
-    return median, min(runs), max(runs)
-
-
 def rows(df):
     out = []
     for scene in kr.scenes_in_order(df):
@@ -59,22 +51,16 @@ def rows(df):
             continue
         row = {"scene": scene, "n_tri": int(r["n_tri"])}
         for prefix, _, _ in PASSES:
-            row[prefix] = _cell(r, prefix)
+            row[prefix] = embree.ratio_cell(r, prefix + "_ratio")
         out.append(row)
     return out
-
-
-def _fmt(cell):
-    if cell is None:
-        return latex.DASH
-    return "%.2f {\\scriptsize (%.2f--%.2f)}" % cell
 
 
 def render(data):
     groups = [("", 2), ("Single rays", 2), ("Packets", 2)]
     header = ["Scene", "$N_{tri}$"] + [h for _, _, h in PASSES]
     body = [[latex.escape(r["scene"]), latex.fmt_int(r["n_tri"])] +
-            [_fmt(r[prefix]) for prefix, _, _ in PASSES] for r in data]
+            [embree.fmt_cell(r[prefix]) for prefix, _, _ in PASSES] for r in data]
     if not body:
         body = [["\\emph{no runs of sah-packet in the fast mode}"] + [""] * (len(header) - 1)]
     caption = ("Where the gap to Embree~3 is, per pass: our tree "

@@ -42,15 +42,6 @@ MACROS = [p + s for p in ("EmbreeTriBest", "EmbreeTriSingle", "EmbreeTriKdBest")
 NOISE = 0.02
 
 
-def _cell(r, column):
-    """(paired median, lowest, highest round) of a ratio column, or None."""
-    median, runs = embree.paired(r, column)
-    if median is None:
-        return None
-    runs = runs or [median]
-    return median, min(runs), max(runs)
-
-
 def _per_triangle(r, column):
     v = r[column] if column in r else None
     return float(v) / float(r["n_tri"]) if kr.present(v) and r["n_tri"] else None
@@ -62,23 +53,17 @@ def rows(df):
         if (scene, TREE) not in df.index:
             continue
         r = df.loc[(scene, TREE)]
-        tri = _cell(r, "tri_best_ratio")
+        tri = embree.ratio_cell(r, "tri_best_ratio")
         if tri is None:
             continue
         out.append({"scene": scene, "n_tri": int(r["n_tri"]),
-                    "kd_best": _cell(r, "best_ratio"), "tri_best": tri,
-                    "kd_single": _cell(r, "single_ratio"),
-                    "tri_single": _cell(r, "tri_single_ratio"),
+                    "kd_best": embree.ratio_cell(r, "best_ratio"), "tri_best": tri,
+                    "kd_single": embree.ratio_cell(r, "single_ratio"),
+                    "tri_single": embree.ratio_cell(r, "tri_single_ratio"),
                     "kd_bytes": _per_triangle(r, "tree_bytes"),
                     "tri_bytes": _per_triangle(r, "tri_bytes"),
                     "embree_bytes": _per_triangle(r, "embree_bvh_bytes")})
     return out
-
-
-def _fmt(cell):
-    if cell is None:
-        return latex.DASH
-    return "%.2f {\\scriptsize (%.2f--%.2f)}" % cell
 
 
 def _median(cell):
@@ -94,9 +79,10 @@ def render(data):
     header = ["Scene", "$N_{tri}$", "kd-tree", "baseline", "kd-tree", "baseline",
               "kd-tree", "baseline", "Embree"]
     body = [[latex.escape(r["scene"]), latex.fmt_int(r["n_tri"]),
-             _fmt(r["kd_best"]), _fmt(r["tri_best"]), _median(r["kd_single"]),
-             _median(r["tri_single"]), _bytes(r["kd_bytes"]), _bytes(r["tri_bytes"]),
-             _bytes(r["embree_bytes"])] for r in data]
+             embree.fmt_cell(r["kd_best"]), embree.fmt_cell(r["tri_best"]),
+             _median(r["kd_single"]), _median(r["tri_single"]),
+             _bytes(r["kd_bytes"]), _bytes(r["tri_bytes"]), _bytes(r["embree_bytes"])]
+            for r in data]
     if not body:
         body = [["\\emph{no runs with the baseline}"] + [""] * (len(header) - 1)]
     caption = ("What the kd-tree's structure costs: our tree \\texttt{sah-packet} "
