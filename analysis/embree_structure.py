@@ -15,8 +15,9 @@ structure costs (its leaves hold a fragment of every triangle that crosses
 their cells), and what it still lacks against Embree is the kernels'.
 
 Per scene with a run that timed the baseline: best mode against Embree's
-best mode and single rays against Embree's single rays, our tree's and the
-baseline's, each the paired median with the rounds' range; and the bytes a
+best mode (the paired median with the rounds' range) and single rays against
+Embree's single rays (the paired median), our tree's and the baseline's; and
+the bytes a
 triangle of our tree, the baseline and Embree's BVH. Runs made before kdrt
 timed the baseline are left out.
 
@@ -37,8 +38,9 @@ MACROS = [p + s for p in ("EmbreeTriBest", "EmbreeTriSingle", "EmbreeTriKdBest")
           for s in ("Scenes", "RatioMedian", "RatioMin", "RatioMax", "BigScenes",
                     "BigAtLeastSeventy", "BigAtLeastEighty", "BigAtLeastOne")] + \
     ["EmbreeTriBytes" + s for s in ("Min", "Max", "Median")] + ["EmbreeTriClause"]
-# A quotient of medians within this of 1 is read as no difference (the
-# rounds' spread on these machines is a few per cent).
+# A median quotient within this of 1 is read as no difference: two copies
+# of the same structure, paired in one process, gave 0.98-1.02 per scene
+# (render_bench, 5 rounds, six scenes; 2026-12-07).
 NOISE = 0.02
 
 
