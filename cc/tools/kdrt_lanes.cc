@@ -28,6 +28,7 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     const absl::Time start = absl::Now();
     set.bvh = std::make_unique<KdTreeBvhTracer>(tree);
     set.bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
+    set.bvh_bytes = set.bvh->bvh().bytes();
     lanes.push_back({kSingleBvhLane, set.bvh.get(), so});
     lanes.push_back({kPacketsBvhLane, set.bvh.get(), fo});
   }

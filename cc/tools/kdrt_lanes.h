@@ -41,6 +41,7 @@ struct LaneSet {
   // third single-ray mode, and the seconds its build took.
   std::unique_ptr<KdTreeBvhTracer> bvh;
   double bvh_build_s = 0;
+  size_t bvh_bytes = 0;  // its nodes (LeafBvh::bytes), kept after it is freed
   // With `fast` and `triangle_bvh`: the same kernels over a BVH of whole
   // triangles (cc/kdtree/triangle_bvh.h), its build's seconds and its bytes.
   std::unique_ptr<TriangleBvhTracer> triangle_bvh;

@@ -77,12 +77,14 @@ inline constexpr char kReplayPacketsLane[] = "replay packets";
 // kFastLane and kSingleOriginLane; Embree's when `embree_timed`); `quality`
 // is null without Embree. Single rays against single rays take per round the
 // fastest of our single-ray lanes (the first, kSingleOriginLane and
-// kSingleBvhLane, whose build took bvh_build_s), best
+// kSingleBvhLane, whose build took bvh_build_s and whose nodes hold
+// bvh_bytes), best
 // mode against best mode the fastest of ours (the fast mode and
 // kPacketsBvhLane too) over the faster of Embree's two.
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
-                    double pixels, double bvh_build_s, nlohmann::ordered_json* rec);
+                    double pixels, double bvh_build_s, size_t bvh_bytes,
+                    nlohmann::ordered_json* rec);
 
 // With the lanes kEmbreeRobustLane and kEmbreeRobustPacketsLane (Embree built
 // with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds

@@ -141,6 +141,8 @@ check(len(sb["T_R_runs"]) == 2 and sb["T_R"] > 0 and sb["build_s"] >= 0,
 pb = f["packets_bvh"]
 check(len(pb["T_R_runs"]) == 2 and pb["T_R"] > 0 and pb["build_s"] == sb["build_s"],
       "packets through the BVH timed in the same two rounds")
+check(sb["bytes"] > 0 and sb["bytes"] % 256 == 0 and pb["bytes"] == sb["bytes"],
+      "the BVH's nodes' bytes recorded")
 check(f["single_paired_ratio_runs"] == [e / min(k, s, b) for e, k, s, b in
       zip(fe["embree"]["T_R_runs"], fe["T_R_runs"], so["T_R_runs"], sb["T_R_runs"])],
       "single rays: Embree's over the fastest of ours, paired per round")
