@@ -239,9 +239,10 @@ std::vector<CheckResult> Check(const std::string& case_name, const TriangleSoup&
     if (modes[m] != IntersectionMode::kWatertight) continue;
     CheckResult r = CheckTriangleBvh(soup, rays, *references[m]);
     for (size_t i : r.examples) {
-      std::printf("%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a)\n",
-                  case_name.c_str(), kTriangleBvhRow, i, rays[i].origin.x, rays[i].origin.y,
-                  rays[i].origin.z, rays[i].dir.x, rays[i].dir.y, rays[i].dir.z);
+      const Ray& ray = rays[i];  // enough to replay a failure, as PrintExamples
+      std::printf("%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a) tmin %a tmax %a\n",
+                  case_name.c_str(), kTriangleBvhRow, i, ray.origin.x, ray.origin.y,
+                  ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin, ray.tmax);
     }
     std::printf("ROBUST_JSON %s\n", ResultJson(case_name, r).c_str());
     results.push_back(std::move(r));
