@@ -345,7 +345,7 @@ Json MakeRecord(const Scene& s, const Validation& v, const Lineup& l, const Time
               // without it.
               {"tri_bvh_bytes", s.trees->tri_bvh ? Json(s.trees->tri_bvh->bvh()->bytes()) : Json()},
               {"tri_bvh_build_s",
-               s.trees->tri_bvh ? Json(s.trees->tri_bvh_build_seconds) : Json()},
+               s.trees->tri_bvh ? Json(s.trees->tri_bvh->build_seconds()) : Json()},
               {"tracers", std::move(tracers)},
               {"ratio_kd_over_embree", std::move(ratios)},
               {"ratio_kd_over_embree_packet", std::move(packet_ratios)},

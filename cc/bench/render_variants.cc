@@ -29,12 +29,9 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
   trees->bvh = std::make_unique<KdTreeBvhTracer>(trees->tree);
   trees->bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - start);
   if (triangle_bvh) {
-    const absl::Time tri_start = absl::Now();
-    absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
+    absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> tri = TriangleBvhTracer::Build(soup);
     if (!tri.ok()) return tri.status();
-    trees->tri_bvh = std::make_unique<TriangleBvhTracer>(
-        std::make_shared<const TriangleBvh>(*std::move(tri)));
-    trees->tri_bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - tri_start);
+    trees->tri_bvh = *std::move(tri);
   }
   for (const std::string& path : env_paths) {
     absl::StatusOr<EnvResult> env = LoadEnvironmentFile(path, config);

@@ -35,10 +35,9 @@ struct SceneTrees {
   std::unique_ptr<KdTreeBvhTracer> bvh;
   double bvh_build_seconds = 0;
   // A BVH over whole triangles traced by the same kernels (tri_bvh;
-  // cc/kdtree/triangle_bvh.h), built only when asked for, and its build's
-  // seconds.
+  // cc/kdtree/triangle_bvh.h), built only when asked for (its build's
+  // seconds: build_seconds()).
   std::unique_ptr<TriangleBvhTracer> tri_bvh;
-  double tri_bvh_build_seconds = 0;
   std::vector<EnvTree> envs;
 };
 

@@ -1,5 +1,9 @@
 #include "cc/render/kdtree_tracer.h"
 
+#include <utility>
+
+#include "absl/time/clock.h"
+#include "absl/time/time.h"
 #include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/traversal.h"
 
@@ -32,6 +36,17 @@ void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin
   TraversalOptions o = options_;
   o.from_end = o.from_end || origin_tris != nullptr;  // as Occluded's secondary rays
   ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, o, any_);
+}
+
+absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> TriangleBvhTracer::Build(
+    const TriangleSoup& soup) {
+  const absl::Time start = absl::Now();
+  absl::StatusOr<TriangleBvh> bvh = BuildTriangleBvh(soup);
+  if (!bvh.ok()) return bvh.status();
+  auto tracer =
+      std::make_unique<TriangleBvhTracer>(std::make_shared<const TriangleBvh>(*std::move(bvh)));
+  tracer->build_seconds_ = absl::ToDoubleSeconds(absl::Now() - start);
+  return tracer;
 }
 
 }  // namespace kdtree

@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include "absl/status/statusor.h"
+#include "cc/geometry/triangle.h"
 #include "cc/kdtree/brute_force.h"
 #include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/ray_packet.h"
@@ -92,6 +94,9 @@ class KdTreeBvhTracer : public KdTreeTracer {
 class TriangleBvhTracer : public Tracer {
  public:
   explicit TriangleBvhTracer(std::shared_ptr<const TriangleBvh> bvh) : bvh_(std::move(bvh)) {}
+  // Builds the hierarchy over `soup` (BuildTriangleBvh's errors) and its
+  // tracer, timing the build (build_seconds).
+  static absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> Build(const TriangleSoup& soup);
   std::string name() const override { return "triangle_bvh"; }
   using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override {
@@ -113,9 +118,11 @@ class TriangleBvhTracer : public Tracer {
     any_ = any;
   }
   const std::shared_ptr<const TriangleBvh>& bvh() const { return bvh_; }
+  double build_seconds() const { return build_seconds_; }  // Build's; 0 otherwise
 
  private:
   std::shared_ptr<const TriangleBvh> bvh_;
+  double build_seconds_ = 0;
   PacketCounters* closest_ = nullptr;
   PacketCounters* any_ = nullptr;
 };

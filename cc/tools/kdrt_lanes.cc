@@ -34,13 +34,11 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
   }
   if (choice.triangle_bvh) {
     if (!choice.fast) return absl::InvalidArgumentError("--triangle_bvh needs --fast_render");
-    const absl::Time start = absl::Now();
-    absl::StatusOr<TriangleBvh> tri = BuildTriangleBvh(soup);
+    absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> tri = TriangleBvhTracer::Build(soup);
     if (!tri.ok()) return tri.status();
-    set.triangle_bvh_bytes = tri->bytes();
-    set.triangle_bvh = std::make_unique<TriangleBvhTracer>(
-        std::make_shared<const TriangleBvh>(*std::move(tri)));
-    set.triangle_bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
+    set.triangle_bvh = *std::move(tri);
+    set.triangle_bvh_bytes = set.triangle_bvh->bvh()->bytes();
+    set.triangle_bvh_build_s = set.triangle_bvh->build_seconds();
     RenderOptions so = ropt;
     so.skip_origin = true;
     lanes.push_back({kTriangleBvhLane, set.triangle_bvh.get(), so});

@@ -12,7 +12,6 @@
 #include "cc/embree/embree_tracer.h"
 #include "cc/geometry/triangle.h"
 #include "cc/kdtree/tree.h"
-#include "cc/kdtree/triangle_bvh.h"
 #include "cc/render/kdtree_tracer.h"
 #include "cc/render/renderer.h"
 #include "cc/render/replay_tracer.h"
