@@ -32,6 +32,7 @@ from analysis import embree
 from analysis import kdtree_results as kr
 from analysis import latex
 from analysis import provenance
+from analysis import tree_memory
 
 TREE = embree.BEYOND  # sah-packet: the tree the baseline is timed beside
 MACROS = [p + s for p in ("EmbreeTriBest", "EmbreeTriSingle", "EmbreeTriKdBest")
@@ -44,16 +45,12 @@ MACROS = [p + s for p in ("EmbreeTriBest", "EmbreeTriSingle", "EmbreeTriKdBest")
 NOISE = 0.02
 
 
-def _per_triangle(r, column):
-    v = r[column] if column in r else None
-    return float(v) / float(r["n_tri"]) if kr.present(v) and r["n_tri"] else None
-
-
 def _kd_bytes(r):
     """Bytes a triangle of all our best mode reads: the tree's nodes and leaf
     packets and the BVH over its leaves; None without the BVH's bytes
     (records before 2026-12-07)."""
-    tree, bvh = _per_triangle(r, "tree_bytes"), _per_triangle(r, "bvh_bytes")
+    tree = tree_memory.record_per_triangle(r, "tree_bytes")
+    bvh = tree_memory.record_per_triangle(r, "bvh_bytes")
     return tree + bvh if tree is not None and bvh is not None else None
 
 
@@ -71,8 +68,8 @@ def rows(df):
                     "kd_single": embree.ratio_cell(r, "single_ratio"),
                     "tri_single": embree.ratio_cell(r, "tri_single_ratio"),
                     "kd_bytes": _kd_bytes(r),
-                    "tri_bytes": _per_triangle(r, "tri_bytes"),
-                    "embree_bytes": _per_triangle(r, "embree_bvh_bytes")})
+                    "tri_bytes": tree_memory.record_per_triangle(r, "tri_bytes"),
+                    "embree_bytes": tree_memory.record_per_triangle(r, "embree_bvh_bytes")})
     return out
 
 

@@ -41,15 +41,23 @@ MACROS = ["TreeBytesTarget", "TreeBytesFastScenes", "TreeBytesFastMedian", "Tree
           "TreeBytesOverEmbreeMedian", "TreeBytesOverEmbreeMin", "TreeBytesOverEmbreeMax"]
 
 
+def record_per_triangle(r, column):
+    """A record's column / n_tri, or None without either."""
+    v = r[column] if column in r else None
+    if kr.present(v) and kr.present(r["n_tri"]) and r["n_tri"]:
+        return float(v) / float(r["n_tri"])
+    return None
+
+
 def per_triangle(df, preset, column):
     """{scene: column / n_tri} over the scenes with a record of `preset`."""
     out = {}
     for scene in kr.scenes_in_order(df):
         if (scene, preset) not in df.index:
             continue
-        r = df.loc[(scene, preset)]
-        if kr.present(r[column]) and kr.present(r["n_tri"]) and r["n_tri"]:
-            out[scene] = float(r[column]) / float(r["n_tri"])
+        v = record_per_triangle(df.loc[(scene, preset)], column)
+        if v is not None:
+            out[scene] = v
     return out
 
 
