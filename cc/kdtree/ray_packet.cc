@@ -151,7 +151,10 @@ void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* o
   const uint32_t valid = packet_internal::LoadLanes(rays, n, p, &zero);
   if (valid == 0) return;
   const uint32_t plain = valid & ~zero;
-  p->live = SetUpLanes(tree.bounds, p) & plain;
+  // The lanes with a zero direction component are set up below, from
+  // lanes whose frames must then be finite (LoadLanes copied a plain
+  // lane's ray into them): frames for all lanes if there are any.
+  p->live = SetUpLanes(tree.bounds, p, /*frames_if_none=*/zero != 0) & plain;
   // A ray with a zero direction component: SanitizeRay's ray (its zero
   // signed), set up alone.
   for (uint32_t m = zero; m != 0; m &= m - 1) {

@@ -28,25 +28,37 @@ namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// SetUpRay's vector path (ray_setup.h) for the lanes [base, base + Lanes(d)),
-// operation for operation (MINPS / MAXPS operand order included), and
-// MakeWatertightRay's axes and shears; returns the lanes that reach the box.
+// The per-axis distances from the lanes' origins to the box's planes.
 template <class D>
-HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p) {
+struct ChunkOffsets {
+  hn::Vec<D> o[3], dir[3], dl[3], dh[3], depth[3];
+  ChunkOffsets(D d, const AABB& box, size_t base, const PacketRays& p) {
+    for (int k = 0; k < 3; ++k) {
+      o[k] = hn::Load(d, p.org[k] + base);
+      dir[k] = hn::Load(d, p.dir[k] + base);
+      dl[k] = hn::Sub(hn::Set(d, box.lo[k]), o[k]);
+      dh[k] = hn::Sub(hn::Set(d, box.hi[k]), o[k]);
+      depth[k] = hn::Max(hn::Abs(dl[k]), hn::Abs(dh[k]));
+    }
+  }
+};
+
+// SetUpRay's vector path (ray_setup.h) for the lanes [base, base + Lanes(d)),
+// operation for operation (MINPS / MAXPS operand order included), up to the
+// box: reciprocals, tolerances and the interval in the box; returns the
+// lanes that reach the box.
+template <class D>
+HWY_INLINE uint32_t SetUpBoxChunk(D d, const AABB& box, size_t base, PacketRays* p) {
   using V = hn::Vec<D>;
   const V one = hn::Set(d, 1.0f), pad = hn::Set(d, ray_setup::kPad);
-  V o[3], dir[3], dl[3], dh[3], inv[3], depth[3];
+  const ChunkOffsets<D> c(d, box, base, *p);
+  V inv[3];
   V reach = hn::Zero(d);
   for (int k = 0; k < 3; ++k) {
-    o[k] = hn::Load(d, p->org[k] + base);
-    dir[k] = hn::Load(d, p->dir[k] + base);
-    dl[k] = hn::Sub(hn::Set(d, box.lo[k]), o[k]);
-    dh[k] = hn::Sub(hn::Set(d, box.hi[k]), o[k]);
-    inv[k] = hn::Div(one, dir[k]);
+    inv[k] = hn::Div(one, c.dir[k]);
     hn::Store(inv[k], d, p->inv[k] + base);
     // reach = Max(reach, Max(|dl|, |dh|)), Max(a, b) = a > b ? a : b.
-    depth[k] = hn::Max(hn::Abs(dl[k]), hn::Abs(dh[k]));
-    reach = hn::Max(reach, depth[k]);
+    reach = hn::Max(reach, c.depth[k]);
   }
   const V delta = hn::Mul(hn::Set(d, ray_setup::kSpatialTol), reach);
   hn::Store(delta, d, p->delta + base);
@@ -54,7 +66,7 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   for (int k = 0; k < 3; ++k) {
     const V tol = hn::Mul(delta, hn::Abs(inv[k]));
     hn::Store(tol, d, p->tol[k] + base);
-    const V tn = hn::Mul(dl[k], inv[k]), tf = hn::Mul(dh[k], inv[k]);
+    const V tn = hn::Mul(c.dl[k], inv[k]), tf = hn::Mul(c.dh[k], inv[k]);
     V t0 = hn::Min(tf, tn), t1 = hn::Max(tn, tf);
     t0 = hn::Sub(t0, hn::Add(hn::Mul(hn::Abs(t0), pad), tol));
     t1 = hn::Add(t1, hn::Add(hn::Mul(hn::Abs(t1), pad), tol));
@@ -63,6 +75,21 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   }
   hn::Store(lo, d, p->t_entry + base);
   hn::Store(hi, d, p->t_exit + base);
+  return Bits(d, hn::Le(lo, hi));
+}
+
+// The rest of SetUpRay for the same lanes, after SetUpBoxChunk: its
+// watertight axes and shears (MakeWatertightRay), hit slack and keys.
+template <class D>
+HWY_INLINE void SetUpFrameChunk(D d, const AABB& box, size_t base, PacketRays* p) {
+  using V = hn::Vec<D>;
+  const V one = hn::Set(d, 1.0f);
+  const ChunkOffsets<D> c(d, box, base, *p);
+  const V(&o)[3] = c.o;
+  const V(&dir)[3] = c.dir;
+  const V(&depth)[3] = c.depth;
+  const V inv[3] = {hn::Load(d, p->inv[0] + base), hn::Load(d, p->inv[1] + base),
+                    hn::Load(d, p->inv[2] + base)};
   // WatertightAxes: kz the largest |d| (ties to the lower axis), kx and ky
   // the next two cyclically, swapped when d[kz] < 0.
   const V ax = hn::Abs(dir[0]), ay = hn::Abs(dir[1]), az = hn::Abs(dir[2]);
@@ -79,7 +106,7 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   const V sy = hn::Div(hn::IfThenElse(flip, dx0, dy0), den);
   hn::Store(sx, d, p->sx + base);
   hn::Store(sy, d, p->sy + base);
-  hn::Store(hn::Div(one, den), d, p->sz + base);
+  hn::Store(pick(inv, 0, 1, 2), d, p->sz + base);  // 1 / den: inv's quotient, not a second
   hn::Store(hn::IfThenElse(flip, oy0, ox0), d, p->ox + base);
   hn::Store(hn::IfThenElse(flip, ox0, oy0), d, p->oy + base);
   hn::Store(pick(o, 0, 1, 2), d, p->oz + base);
@@ -98,7 +125,6 @@ HWY_INLINE uint32_t SetUpChunk(D d, const AABB& box, size_t base, PacketRays* p)
   }
   p->key_bits[3] |= Bits(d, on_y) << base;
   p->key_bits[4] |= Bits(d, hn::Not(hn::Or(on_x, on_y))) << base;
-  return Bits(d, hn::Le(lo, hi));
 }
 
 // SanitizeRay (ray_check.h) for the lanes [base, base + Lanes(d)) of rays
@@ -171,12 +197,16 @@ uint32_t LoadLanesImpl(const Ray* rays, int n, PacketRays* p, uint32_t* zero) {
   return valid;
 }
 
-uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p) {
+uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p, bool frames_if_none) {
   const hn::ScalableTag<float> d;
   const size_t n = hn::Lanes(d);
   uint32_t live = 0;
   for (uint32_t& bits : p->key_bits) bits = 0;
-  for (size_t base = 0; base < kLanes; base += n) live |= SetUpChunk(d, box, base, p) << base;
+  for (size_t base = 0; base < kLanes; base += n) live |= SetUpBoxChunk(d, box, base, p) << base;
+  // No lane reaches the box (most camera packets: their rays pass the scene
+  // by): the frames are not needed (packet_rays.h).
+  if (live == 0 && !frames_if_none) return 0;
+  for (size_t base = 0; base < kLanes; base += n) SetUpFrameChunk(d, box, base, p);
   return live;
 }
 
@@ -196,8 +226,8 @@ uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero) {
   return HWY_DYNAMIC_DISPATCH(LoadLanesImpl)(rays, n, p, zero);
 }
 
-uint32_t SetUpLanes(const AABB& box, PacketRays* p) {
-  return HWY_DYNAMIC_DISPATCH(SetUpLanesImpl)(box, p);
+uint32_t SetUpLanes(const AABB& box, PacketRays* p, bool frames_if_none) {
+  return HWY_DYNAMIC_DISPATCH(SetUpLanesImpl)(box, p, frames_if_none);
 }
 
 }  // namespace packet_internal

@@ -167,12 +167,13 @@ TEST(RaySetup, SanitizeAndSetUpEqualsScalarBitForBit) {
 // The packet kernel's vector set-up (packet_internal::SetUpLanes, 16 lanes at
 // every kernel width the machine runs) against SetUpRay on each ray: the same
 // answer, and every field bit for bit where the ray reaches the box (the
-// watertight axes rebuilt from the lane's key bits).
+// watertight axes rebuilt from the lane's key bits); and without the frames
+// of a packet that no lane reaches, the same answer.
 TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
   constexpr int kLanes = packet_internal::kLanes;
   std::mt19937 rng(20261202);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-  int groups = 0, hits = 0, targets = 0;
+  int groups = 0, hits = 0, targets = 0, dead = 0;
   for (const std::string& target : PacketKernelTargets()) {
     const ScopedPacketKernelTarget scoped(target);
     ASSERT_TRUE(scoped.ok()) << target;
@@ -200,7 +201,16 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
       }
       if (!ok) continue;
       ++groups;
+      packet_internal::PacketRays q = p;
       const uint32_t live = packet_internal::SetUpLanes(box, &p);
+      // Without frames for a packet none of whose lanes is live: the same
+      // lanes (and the frames when some lane is).
+      ASSERT_EQ(packet_internal::SetUpLanes(box, &q, /*frames_if_none=*/false), live) << g;
+      if (live != 0) {
+        ASSERT_EQ(std::memcmp(q.sx, p.sx, sizeof(p.sx)), 0) << g;
+      } else {
+        ++dead;
+      }
       for (int i = 0; i < kLanes; ++i) {
         RaySetup one;
         ASSERT_EQ(SetUpRay(rays[i], box, &one), (live >> i & 1) != 0) << g;
@@ -232,6 +242,7 @@ TEST(RaySetup, VectorLanesEqualOneRayBitForBit) {
   EXPECT_GT(groups, 1000 * targets);
   EXPECT_GT(hits, 10000);
   EXPECT_LT(hits, kLanes * groups - 10000);
+  EXPECT_GT(dead, 10);
 }
 
 }  // namespace
