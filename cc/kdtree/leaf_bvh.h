@@ -101,6 +101,85 @@
 //    many triangles in a small cell whether or not they are duplicates, so
 //    what the BVH of whole triangles (triangle_bvh.h) gains is its
 //    partition more than the single reference.
+//
+// The packet kernel (leaf_bvh_packet_kernel.cc), tried and not kept
+// (render_bench, sah-packet, the variant on a second copy of the tree, one
+// process, 5 paired rounds, bunny, city2, lost-empire, hairball-small,
+// teapots, courtyard-1m; 2026-12-06): one interval-arithmetic test of a node's
+// eight boxes for the whole group (Wald et al.'s packet culling: the lanes'
+// origins and reciprocals as intervals; exact bounds, as the float operations
+// are monotone), every child that interval enters visited with all the lanes:
+// camera pass 1.40-2.96 times as long, shadow pass 1.5-130 times (a shadow
+// packet's origins are scattered over the surfaces, so its intervals enter
+// nearly every box). The same test as the only one at inner nodes, for camera
+// packets (their lanes share an origin, so it is tight: SlotFilter), children
+// ordered by its bound, and each lane's test of a leaf's box made when the
+// leaf is reached (the lanes then those whose ray enters it before their best
+// hit): camera pass 1.021-1.044 times as long, courtyard-1m 1.130, where the
+// shadow pass, the same code on both sides, gave 1.005-1.029 (in-process A/B,
+// 7 paired rounds, the six scenes): the lanes are no longer narrowed on the
+// way down, so each leaf's test and each node's pop serve more of them. A
+// single-ray fallback (Benthin et al. 2012; Embree's hybrid traversal): a lane
+// left alone at an inner node walks its subtree with the single ray's
+// traversal from its best hit so far: camera pass 0.982-1.021, shadow pass
+// 0.948-0.996 in a first process (bunny, city2, lost-empire, hairball-small,
+// courtyard-1m, hairball-1m) but 0.965-1.021 in a second (the same and
+// teapots, rungholt-1m; shadow rays only), up to two lanes no different from
+// one: within the noise, so not kept. Embree's hybrid threshold (a shadow
+// packet of 16 goes one ray at a time once 14 lanes or fewer are left) in the
+// same A/B (city2, morse-indoor, lost-empire, hairball-small, hairball-1m,
+// courtyard-1m, bunny; 2026-12-07): with up to 3, 8 or all 16 lanes walking
+// alone, the shadow pass took 0.99-1.02, 1.01-1.09 and 1.23-1.86 times as
+// long, and 0.92, 0.91 and 0.90 on hairball-1m alone: a lane walking alone
+// costs 1.2 to 1.9 times what it costs in the packet. With the walk's
+// reciprocals taken from the packet (no division a lane), up to 3 lanes:
+// shadow pass 0.99-1.02, hairball-1m 0.94 (T_R 0.98); up to 5: 0.99-1.08,
+// hairball-1m 0.93: a gain on one scene against small losses on the others.
+// Also not kept (same A/B): the leaf where the thread's last shadow packet
+// found an occluder tested first for the lanes entering its box (the issue's
+// "last occluder of the neighbouring ray"): shadow pass 0.997-1.048 (fforest
+// too), no scene faster; for lanes sharing their origin, the planes' offsets
+// from it taken once in scalars (one multiply a lane instead of a subtract and
+// a multiply): camera pass 1.008-1.040; and a box per leaf packet (24 bytes)
+// against which a leaf's lanes were tested before its four triangles: it
+// skipped 28-49 % of the packets and left 4-7 of a packet's 13 lanes, yet
+// renders took 1.00-1.13 times as long. Nor a node's one or two children
+// ordered without a branch (a select on the lead lane's entry distances, the
+// second child always written to the stack and the top raised by count - 1;
+// the sort kept for three or more): T_R 0.996-1.017, camera pass 1.000-1.016,
+// the control's noise (bunny, city2, hairball-1m, lost-empire, courtyard-1m,
+// morse-indoor; 2026-12-07).
+//  - At a node where the group's slot filter leaves one candidate slot, an
+//    inner node, that child taken with the group's lanes and without their
+//    slab test (exact: the child's boxes lie inside its box): T_R 0.997-1.006,
+//    camera pass 0.990-1.016 (in-process A/B, the change on AVX3_DL against
+//    AVX3, 7 paired rounds; bunny, lost-empire, morse-trees, city2,
+//    morse-indoor, hairball-1m, courtyard-1m; 2026-12-07): a node step is not
+//    bound by the lanes' test.
+//  - Any-hit children in a static order per node by the ray-termination SAH
+//    (Ize & Hansen, "RTSAH traversal order for occlusion rays", CGF 30(2),
+//    2011, which the issue names for single shadow rays) instead of farthest
+//    first: each node's slots sorted by alpha / C, where a leaf's alpha is one
+//    less the product over its triangles of (1 - 2 A_t / SA(box)) (Cauchy's
+//    formula for random lines), its C its triangles, and a node's alpha and C
+//    combine its children's with p = SA(child) / SA(node) and K_T 2; the
+//    children then visited in slot order, without a sort. Same A/B, nine
+//    scenes (bunny, lost-empire, morse-trees, city2, morse-indoor,
+//    hairball-1m, hairball-small, courtyard-1m, dragon), shadow pass: packets
+//    0.964 on hairball-1m, 1.014 on city2, 1.029 on courtyard-1m and
+//    0.985-1.009 on the others; single rays (kd_bvh) 0.966 on morse-indoor,
+//    0.971 on hairball-small, 1.020 on hairball-1m, 1.027 on city2, 1.048 on
+//    courtyard-1m and 0.988-1.002 on the others: no consistent gain either
+//    way. Farthest first already leaves for last the leaf of the ray's own
+//    surface, which rarely stops it.
+//  - Mailboxing (a lane's test of a triangle skipped when the same group has
+//    already tested it for that lane in another leaf; exact, as the test is
+//    deterministic and a lane's best t only falls): measured only, with
+//    counters in one render (kd_bvh_packet, camera and shadow rays;
+//    2026-12-07). Such repeated lane tests were 7.0 % of the lane tests on
+//    bunny, 4.5-4.6 % on hairball-1m and courtyard-1m and 1.1-2.9 % on
+//    lost-empire, morse-trees and city2; a whole triangle step was a repeat in
+//    0.5-2.8 % of the steps: too few to pay for a lookup at every step.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 

@@ -21,64 +21,17 @@
 // leaves come: each lane gets IntersectLeafBvh's answer, bit for bit
 // (leaf_bvh_test.cc), and so the kd-tree's.
 //
-// Tried and not kept (render_bench, sah-packet, the variant on a second
-// copy of the tree, one process, 5 paired rounds, bunny, city2, lost-empire,
-// hairball-small, teapots, courtyard-1m; 2026-12-06): one interval-arithmetic
-// test of a node's eight boxes for the whole group (Wald et al.'s packet
-// culling: the lanes' origins and reciprocals as intervals; exact bounds, as
-// the float operations are monotone), every child that interval enters
-// visited with all the lanes: camera pass 1.40-2.96 times as long, shadow
-// pass 1.5-130 times (a shadow packet's origins are scattered over the
-// surfaces, so its intervals enter nearly every box). The same test as the
-// only one at inner nodes, for camera packets (their lanes share an origin,
-// so it is tight: SlotFilter), children ordered by its bound, and each
-// lane's test of a leaf's box made when the leaf is reached (the
-// lanes then those whose ray enters it before their best hit): camera pass
-// 1.021-1.044 times as long, courtyard-1m 1.130, where the shadow pass,
-// the same code on both sides, gave 1.005-1.029 (in-process A/B, 7 paired
-// rounds, the six scenes): the lanes are no longer narrowed on the way
-// down, so each leaf's test and each node's pop serve more of them. A
-// single-ray fallback (Benthin et al. 2012; Embree's hybrid traversal): a
-// lane left alone at an inner node walks its subtree with the single ray's
-// traversal from its best hit so far: camera pass 0.982-1.021, shadow pass
-// 0.948-0.996 in a first process (bunny, city2, lost-empire,
-// hairball-small, courtyard-1m, hairball-1m) but 0.965-1.021 in a second
-// (the same and teapots, rungholt-1m; shadow rays only), up to two lanes
-// no different from one: within the noise, so not kept. Embree's hybrid
-// threshold (a shadow packet of 16 goes one ray at a time once 14 lanes or
-// fewer are left) in the same A/B (city2, morse-indoor, lost-empire,
-// hairball-small, hairball-1m, courtyard-1m, bunny; 2026-12-07): with up to
-// 3, 8 or all 16 lanes walking alone, the shadow pass took 0.99-1.02,
-// 1.01-1.09 and 1.23-1.86 times as long, and 0.92, 0.91 and 0.90 on
-// hairball-1m alone: a lane walking alone costs 1.2 to 1.9 times what it
-// costs in the packet. With the walk's reciprocals taken from the packet
-// (no division a lane), up to 3 lanes: shadow pass 0.99-1.02, hairball-1m
-// 0.94 (T_R 0.98); up to 5: 0.99-1.08, hairball-1m 0.93: a gain on one
-// scene against small losses on the others. Also not kept (same A/B): the leaf where the
-// thread's last shadow packet found an occluder tested first for the lanes
-// entering its box (the "last occluder of the neighbouring ray"):
-// shadow pass 0.997-1.048 (fforest too), no scene faster; for lanes
-// sharing their origin, the planes' offsets from it taken once in scalars
-// (one multiply a lane instead of a subtract and a multiply): camera pass
-// 1.008-1.040;
-// and a box per leaf packet (24 bytes) against which a leaf's lanes were
-// tested before its four triangles: it skipped 28-49 % of the packets and
-// left 4-7 of a packet's 13 lanes, yet renders took 1.00-1.13 times as
-// long. Nor a node's one or two children ordered without a branch (a
-// select on the lead lane's entry distances, the second child always
-// written to the stack and the top raised by count - 1; the sort kept for
-// three or more): T_R 0.996-1.017, camera pass 1.000-1.016, the control's
-// noise (bunny, city2, hairball-1m, lost-empire, courtyard-1m,
-// morse-indoor; 2026-12-07).
+// Tried and not kept: leaf_bvh.h's list, "the packet kernel".
 //
 // Where the time goes (rdtsc around the phases, one thread, sah-packet,
 // 2026-12-07; TSC ticks): 57-72 % of a render's camera packets reach no
 // node (their rays miss the scene's box: 0.28-0.43 groups a packet on
-// morse-indoor, city2, lost-empire, bunny, hairball-1m), yet each pays its
+// morse-indoor, city2, lost-empire, bunny, hairball-1m), yet each paid its
 // set-up, about 130 ticks, 100 of them LoadLanes' eight 16-wide gathers (a
 // microbenchmark on rays in L1: the gathers 100, a transposing load of the
 // same rays 13, SetUpLanes 29; Embree's packets pay the same gathers in
-// embree_tracer.cc's FillRay16). In a live camera group the leaves take
+// embree_tracer.cc's FillRay16; such a packet no longer sets up its
+// watertight frames: packet_rays.h SetUpLanes). In a live camera group the leaves take
 // 59-70 % of the kernel's time: a leaf reached costs 480-750 ticks, for
 // 16-32 triangles (2.8-6.2 leaf packets at 14 lanes a triangle step, or
 // 4-8 packets at about 4 rays in TestLeafFew), a node about 100-110.
