@@ -180,6 +180,29 @@
 //    bunny, 4.5-4.6 % on hairball-1m and courtyard-1m and 1.1-2.9 % on
 //    lost-empire, morse-trees and city2; a whole triangle step was a repeat in
 //    0.5-2.8 % of the steps: too few to pay for a lookup at every step.
+//  - Measured, not yet built in (a scratch build, render_bench --envs, the
+//    grouped BVH as a second tracer of the same tree, 7 paired rounds;
+//    2026-12-07): each kd leaf's triangles split into groups for the BVH, the
+//    triangles whose three vertices lie on one axis-aligned plane, per plane
+//    with at least m of them, and the rest, each group a BVH leaf with its own
+//    packets (a copy of the leaf packets, regrouped) and the box of its
+//    triangles clipped to the cell; exact as this BVH is (render_bench's
+//    validation: 0 mismatches). A flat group's box is flat, and a shadow ray
+//    leaving that plane (its origin offset past it: spawn.h) does not enter
+//    it, where it enters the kd leaf's box, which holds the leaf's other
+//    geometry too (on morse-indoor that leaf took 3.7 of a shadow ray's 5.2
+//    triangle tests). With m = 1, renders took 0.969-0.981 of kd_bvh_packet's
+//    time on lost-empire, morse-indoor, morse-kitchen and city2 (shadow pass
+//    0.948-0.982, camera pass 0.959-1.000), 0.975 on courtyard-1m and 0.997 on
+//    bunny; with m = 2, in two processes, 0.972-1.000 on those four and 0.986
+//    on city; the same tree twice gave 0.992-1.010. With m = 4 only
+//    lost-empire gained. But the regrouped packets, padded per group to whole
+//    packets of four, grow by 9 % (morse-indoor) to 80 % (city2: its groups
+//    are one or two triangles); and a copy of the packets with every triangle
+//    in one group (m above any group) made hairball-1m 0.978 by itself, a
+//    layout effect, not the groups', against 0.994-1.022 elsewhere. To keep
+//    it: the packets regrouped in place, or a BVH that owns them and the
+//    memory table that counts them.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
