@@ -5,7 +5,7 @@ Runs the two optimised benchmark binaries over the fetched scenes
 (data/cache/scenes/index.json) and appends their JSON lines to OUT/build.jsonl
 and OUT/render.jsonl; then prints a Markdown summary of everything in OUT
 (also with --summary_only, to re-read earlier runs; the tables are
-experiments/bench_tables.py's). Both binaries validate before they time:
+experiments/bench_tables.py's and bench_structure.py's). Both binaries validate before they time:
 build_bench checks seeded rays against brute force and that every timed build
 writes the validated tree (its fingerprint); render_bench checks the kd-tree's
 rays against brute force and records Embree's disagreements. Both benches time
@@ -48,6 +48,7 @@ sys.path.insert(0, ROOT)
 from analysis import provenance  # noqa: E402  (the one provenance check)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_tables  # noqa: E402  (the Markdown tables)
+import bench_structure  # noqa: E402  (the tables of packet work and bytes)
 import bench_merge  # noqa: E402  (several processes' rounds pooled, --processes)
 import bench_warm  # noqa: E402  (the first and second traces, --twice)
 import bench_classes  # noqa: E402  (per class of ray, --classes)
@@ -179,13 +180,13 @@ def main(argv=None):
         robust = summarise(render_records, lambda r: bench_tables.targets_summary(r, robust=True),
                            render_out, *allow)
         passes = summarise(render_records, bench_tables.passes_summary, render_out, *allow)
-        packets = summarise(render_records, bench_tables.packets_summary, render_out, *allow)
+        packets = summarise(render_records, bench_structure.packets_summary, render_out, *allow)
         # Records before 2026-12-06 have no Embree bytes: no table then.
-        memory_table = bench_tables.memory_summary(render_records)
+        memory_table = bench_structure.memory_summary(render_records)
         memory = (summarise(render_records, lambda _: memory_table, render_out, *allow)
                   if memory_table else "")
         warm = summarise(render_records, bench_warm.warm_summary, render_out, *allow)
-        tri_table = bench_tables.triangle_bvh_summary(render_records)
+        tri_table = bench_structure.triangle_bvh_summary(render_records)
         tri = (summarise(render_records, lambda _: tri_table, render_out, *allow)
                if tri_table else "")
         classes_table = bench_classes.classes_summary(render_records)

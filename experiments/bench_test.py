@@ -1,4 +1,4 @@
-"""Tests of experiments/bench.py and experiments/bench_tables.py: scene
+"""Tests of experiments/bench.py, bench_tables.py and bench_structure.py: scene
 selection, the summaries and the provenance they state and check."""
 import contextlib
 import io
@@ -10,6 +10,7 @@ import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench  # noqa: E402
+import bench_structure  # noqa: E402
 import bench_tables  # noqa: E402
 
 
@@ -215,7 +216,7 @@ class BenchTest(unittest.TestCase):
                          "embree_packet": runs([1.6, 2.0], [0.7, 0.7], [0.7, 0.7]),
                          "replay": runs([1, 1], [0.4, 0.4], [0.3, 0.3]),
                          "replay_packet": runs([1, 1], [0.4, 0.4], [0.3, 0.3])}}
-        text = bench_tables.triangle_bvh_summary([r, dict(r, threads=2)])
+        text = bench_structure.triangle_bvh_summary([r, dict(r, threads=2)])
         # Best mode: Embree's 1.6, 2.0 over kd_bvh_packet's 2, 2 (0.80, 1.00)
         # and over tri_bvh_packet's 1.6 (1.00, 1.25). Camera packets, tracing
         # alone: 0.3 over 0.6 and 0.4; shadow: 0.4 over 0.5 and 0.3.
@@ -228,16 +229,16 @@ class BenchTest(unittest.TestCase):
         # Rows without the baseline: no table.
         for name in ("tri_bvh", "tri_bvh_packet"):
             del r["tracers"][name]
-        self.assertEqual(bench_tables.triangle_bvh_summary([r]), "")
+        self.assertEqual(bench_structure.triangle_bvh_summary([r]), "")
 
     def test_memory_summary_gives_bytes_per_triangle(self):
         one = {"scene": "s", "n_tri": 1000, "preset": "sah-packet", "threads": 1,
                "tree_bytes": 120000, "embree_bvh_bytes": 60000}
         older = dict(one, scene="old", embree_bvh_bytes=None)
-        text = bench_tables.memory_summary([one, dict(one, threads=2), older])
+        text = bench_structure.memory_summary([one, dict(one, threads=2), older])
         self.assertIn("| s | 1,000 | sah-packet | 120 | 60 | 2.00 |", text)
         self.assertEqual(len(text.splitlines()), 3)  # the header, the rule, one row
-        self.assertEqual(bench_tables.memory_summary([older]), "")
+        self.assertEqual(bench_structure.memory_summary([older]), "")
 
     def test_packets_summary_gives_steps_per_packet_and_lanes_per_step(self):
         def counts(packets, rays):
@@ -250,7 +251,7 @@ class BenchTest(unittest.TestCase):
              "provenance": provenance(),
              "packet_counts": {"kd_packet_origin": {"kernel": "AVX3", "closest": counts(17166, 640000),
                                                     "any": counts(8609, 134093)}}}
-        text = bench_tables.packets_summary([r, dict(r, threads=2),
+        text = bench_structure.packets_summary([r, dict(r, threads=2),
                                              dict(r, scene="t", packet_counts={})])
         self.assertIn("| s | kd_packet_origin | AVX3 | closest | 17,166 | 20.2 | 5.0 | 23.0 | "
                       "13.5 | 13.6 | 7.5 | 8.5 |", text)
