@@ -115,7 +115,7 @@ uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero);
 // box. When none does and frames_if_none is false, only what the box test
 // needs is filled (inv, delta, tol, t_entry, t_exit; the keys are 0): a
 // packet none of whose lanes is live reads nothing else. In-process A/B
-// (7 paired rounds, eight scenes; 2026-12-07): camera pass 0.986-0.999 of
+// (7 paired rounds, eight scenes; 2026-12-07): camera pass 0.988-0.998 of
 // the time (most camera packets pass the scene by), where the control (the
 // same code on both sides) gave 1.001-1.012. Vector code, chosen at run
 // time like TraceGroup.
