@@ -28,45 +28,42 @@ namespace packet_internal {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// The per-axis distances from the lanes' origins to the box's planes.
+// A chunk's rays as the box's set-up leaves them for the frames' (kept in
+// registers between SetUpBoxChunk and SetUpFrameChunk).
 template <class D>
-struct ChunkOffsets {
-  hn::Vec<D> o[3], dir[3], dl[3], dh[3], depth[3];
-  ChunkOffsets(D d, const AABB& box, size_t base, const PacketRays& p) {
-    for (int k = 0; k < 3; ++k) {
-      o[k] = hn::Load(d, p.org[k] + base);
-      dir[k] = hn::Load(d, p.dir[k] + base);
-      dl[k] = hn::Sub(hn::Set(d, box.lo[k]), o[k]);
-      dh[k] = hn::Sub(hn::Set(d, box.hi[k]), o[k]);
-      depth[k] = hn::Max(hn::Abs(dl[k]), hn::Abs(dh[k]));
-    }
-  }
+struct ChunkRays {
+  hn::Vec<D> o[3], dir[3], depth[3], inv[3];
 };
 
 // SetUpRay's vector path (ray_setup.h) for the lanes [base, base + Lanes(d)),
 // operation for operation (MINPS / MAXPS operand order included), up to the
-// box: reciprocals, tolerances and the interval in the box; returns the
-// lanes that reach the box.
+// box: reciprocals, tolerances and the interval in the box, with *r for the
+// frames; returns the lanes that reach the box.
 template <class D>
-HWY_INLINE uint32_t SetUpBoxChunk(D d, const AABB& box, size_t base, PacketRays* p) {
+HWY_INLINE uint32_t SetUpBoxChunk(D d, const AABB& box, size_t base, PacketRays* p,
+                                  ChunkRays<D>* r) {
   using V = hn::Vec<D>;
   const V one = hn::Set(d, 1.0f), pad = hn::Set(d, ray_setup::kPad);
-  const ChunkOffsets<D> c(d, box, base, *p);
-  V inv[3];
+  V dl[3], dh[3];
   V reach = hn::Zero(d);
   for (int k = 0; k < 3; ++k) {
-    inv[k] = hn::Div(one, c.dir[k]);
-    hn::Store(inv[k], d, p->inv[k] + base);
+    r->o[k] = hn::Load(d, p->org[k] + base);
+    r->dir[k] = hn::Load(d, p->dir[k] + base);
+    dl[k] = hn::Sub(hn::Set(d, box.lo[k]), r->o[k]);
+    dh[k] = hn::Sub(hn::Set(d, box.hi[k]), r->o[k]);
+    r->inv[k] = hn::Div(one, r->dir[k]);
+    hn::Store(r->inv[k], d, p->inv[k] + base);
     // reach = Max(reach, Max(|dl|, |dh|)), Max(a, b) = a > b ? a : b.
-    reach = hn::Max(reach, c.depth[k]);
+    r->depth[k] = hn::Max(hn::Abs(dl[k]), hn::Abs(dh[k]));
+    reach = hn::Max(reach, r->depth[k]);
   }
   const V delta = hn::Mul(hn::Set(d, ray_setup::kSpatialTol), reach);
   hn::Store(delta, d, p->delta + base);
   V lo = hn::Load(d, p->tmin + base), hi = hn::Load(d, p->tmax + base);
   for (int k = 0; k < 3; ++k) {
-    const V tol = hn::Mul(delta, hn::Abs(inv[k]));
+    const V tol = hn::Mul(delta, hn::Abs(r->inv[k]));
     hn::Store(tol, d, p->tol[k] + base);
-    const V tn = hn::Mul(c.dl[k], inv[k]), tf = hn::Mul(c.dh[k], inv[k]);
+    const V tn = hn::Mul(dl[k], r->inv[k]), tf = hn::Mul(dh[k], r->inv[k]);
     V t0 = hn::Min(tf, tn), t1 = hn::Max(tn, tf);
     t0 = hn::Sub(t0, hn::Add(hn::Mul(hn::Abs(t0), pad), tol));
     t1 = hn::Add(t1, hn::Add(hn::Mul(hn::Abs(t1), pad), tol));
@@ -78,18 +75,15 @@ HWY_INLINE uint32_t SetUpBoxChunk(D d, const AABB& box, size_t base, PacketRays*
   return Bits(d, hn::Le(lo, hi));
 }
 
-// The rest of SetUpRay for the same lanes, after SetUpBoxChunk: its
+// The rest of SetUpRay for the same lanes, from SetUpBoxChunk's `r`: its
 // watertight axes and shears (MakeWatertightRay), hit slack and keys.
 template <class D>
-HWY_INLINE void SetUpFrameChunk(D d, const AABB& box, size_t base, PacketRays* p) {
+HWY_INLINE void SetUpFrameChunk(D d, size_t base, const ChunkRays<D>& r, PacketRays* p) {
   using V = hn::Vec<D>;
-  const V one = hn::Set(d, 1.0f);
-  const ChunkOffsets<D> c(d, box, base, *p);
-  const V(&o)[3] = c.o;
-  const V(&dir)[3] = c.dir;
-  const V(&depth)[3] = c.depth;
-  const V inv[3] = {hn::Load(d, p->inv[0] + base), hn::Load(d, p->inv[1] + base),
-                    hn::Load(d, p->inv[2] + base)};
+  const V(&o)[3] = r.o;
+  const V(&dir)[3] = r.dir;
+  const V(&depth)[3] = r.depth;
+  const V(&inv)[3] = r.inv;
   // WatertightAxes: kz the largest |d| (ties to the lower axis), kx and ky
   // the next two cyclically, swapped when d[kz] < 0.
   const V ax = hn::Abs(dir[0]), ay = hn::Abs(dir[1]), az = hn::Abs(dir[2]);
@@ -202,11 +196,14 @@ uint32_t SetUpLanesImpl(const AABB& box, PacketRays* p, bool frames_if_none) {
   const size_t n = hn::Lanes(d);
   uint32_t live = 0;
   for (uint32_t& bits : p->key_bits) bits = 0;
-  for (size_t base = 0; base < kLanes; base += n) live |= SetUpBoxChunk(d, box, base, p) << base;
+  ChunkRays<hn::ScalableTag<float>> r[kLanes / hn::MaxLanes(d)];
+  for (size_t base = 0; base < kLanes; base += n) {
+    live |= SetUpBoxChunk(d, box, base, p, &r[base / n]) << base;
+  }
   // No lane reaches the box (most camera packets: their rays pass the scene
   // by): the frames are not needed (packet_rays.h).
   if (live == 0 && !frames_if_none) return 0;
-  for (size_t base = 0; base < kLanes; base += n) SetUpFrameChunk(d, box, base, p);
+  for (size_t base = 0; base < kLanes; base += n) SetUpFrameChunk(d, base, r[base / n], p);
   return live;
 }
 
