@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <string>
 #include <utility>
 
 #include <tbb/blocked_range.h>
@@ -188,20 +189,28 @@ std::string ResultJson(const std::string& case_name, const CheckResult& r) {
 
 namespace {
 
+// A ray's origin, direction, tmin and tmax in hexadecimal floats: enough to
+// replay a failure.
+std::string RayText(const Ray& ray) {
+  char text[320];
+  std::snprintf(text, sizeof(text), "origin (%a, %a, %a) dir (%a, %a, %a) tmin %a tmax %a",
+                ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z,
+                ray.tmin, ray.tmax);
+  return text;
+}
+
 void PrintExamples(const std::string& case_name, const std::string& preset, const KdTree& tree,
                    const std::vector<Ray>& rays, const std::vector<Hit>& reference,
                    const CheckResult& r) {
-  for (size_t i : r.examples) {  // enough to replay a failure
+  for (size_t i : r.examples) {
     const Ray& ray = rays[i];
     const Hit got = Intersect(tree, ray, WithTest(r.mode)), want = reference[i];
-    std::printf("%s/%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a) "
-                "tmin %a tmax %a: kd-tree tri %d t %.9g (any-hit %d), brute force tri %d "
-                "t %.9g\n",
-                case_name.c_str(), preset.c_str(), IntersectionModeName(r.mode), i, ray.origin.x,
-                ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin, ray.tmax,
-                got.hit() ? static_cast<int>(got.tri) : -1, got.t,
-                Occluded(tree, ray, WithTest(r.mode)) ? 1 : 0, want.hit() ? static_cast<int>(want.tri) : -1,
-                want.t);
+    std::printf("%s/%s/%s mismatch: ray %zu %s: kd-tree tri %d t %.9g (any-hit %d), "
+                "brute force tri %d t %.9g\n",
+                case_name.c_str(), preset.c_str(), IntersectionModeName(r.mode), i,
+                RayText(ray).c_str(), got.hit() ? static_cast<int>(got.tri) : -1, got.t,
+                Occluded(tree, ray, WithTest(r.mode)) ? 1 : 0,
+                want.hit() ? static_cast<int>(want.tri) : -1, want.t);
   }
 }
 
@@ -239,10 +248,8 @@ std::vector<CheckResult> Check(const std::string& case_name, const TriangleSoup&
     if (modes[m] != IntersectionMode::kWatertight) continue;
     CheckResult r = CheckTriangleBvh(soup, rays, *references[m]);
     for (size_t i : r.examples) {
-      const Ray& ray = rays[i];  // enough to replay a failure, as PrintExamples
-      std::printf("%s/%s mismatch: ray %zu origin (%a, %a, %a) dir (%a, %a, %a) tmin %a tmax %a\n",
-                  case_name.c_str(), kTriangleBvhRow, i, ray.origin.x, ray.origin.y,
-                  ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z, ray.tmin, ray.tmax);
+      std::printf("%s/%s mismatch: ray %zu %s\n", case_name.c_str(), kTriangleBvhRow, i,
+                  RayText(rays[i]).c_str());
     }
     std::printf("ROBUST_JSON %s\n", ResultJson(case_name, r).c_str());
     results.push_back(std::move(r));
