@@ -8,10 +8,14 @@ from analysis import testdata
 
 
 class EmbreeStructureTest(testdata.KdtreeFixtureTest):
-    def append(self, scene, n_tri, tri=None, variant="sah-packet"):
+    def append(self, scene, n_tri, tri=None, variant="sah-packet", packet_bytes=None):
         fast = testdata.fast_render([1.1, 1.2, 1.3], best=[0.9, 0.92, 0.94],
                                     single=[0.85, 0.9, 0.8], tri=tri)
         fast["single_bvh"]["bytes"] = 7 * n_tri  # the BVH over the leaves
+        # Its own leaf packets (since session 47); none in older records.
+        fast["single_bvh"].pop("packet_bytes")
+        if packet_bytes is not None:
+            fast["single_bvh"]["packet_bytes"] = packet_bytes
         testdata.write_kdtree(self.ctx.results_dir, [testdata.kdrt_record(
             scene, variant, n_tri=n_tri, T_R=0.3, tree_bytes=80 * n_tri,
             embree=testdata.embree(0.2, [0.7, 0.8, 0.9], bvh_bytes=64 * n_tri),
@@ -43,6 +47,13 @@ class EmbreeStructureTest(testdata.KdtreeFixtureTest):
                       "1.00 {\\scriptsize (0.98--1.02)} & 0.85 & 0.90 & 87 & 50 & 64", table)
         self.assertNotIn("gamma", table)
         self.assertNotIn("delta", table)
+
+    def test_our_bytes_are_the_bvh_and_its_own_packets(self):
+        # Since session 47 the BVH reads its own leaf packets, not the tree's.
+        self.append("alpha", 70000, tri=([0.8] * 3, [1.0] * 3, 50 * 70000),
+                    packet_bytes=60 * 70000)
+        embree_structure.generate(self.ctx)
+        self.assertIn("0.85 & 0.80 & 67 & 50 & 64", self.read("embree_structure.tex"))
 
     def test_no_run_with_the_baseline(self):
         self.append("alpha", 70000)

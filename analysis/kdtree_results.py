@@ -71,8 +71,11 @@ FIELDS = {
     "T_R_single_origin_runs": "fast_render.single_origin.T_R_runs",
     "T_R_single_bvh_runs": "fast_render.single_bvh.T_R_runs",
     "single_bvh_build_s": "fast_render.single_bvh.build_s",
-    # Its nodes' bytes (since 2026-12-07), beside the tree's tree_bytes.
+    # Its nodes' bytes (since 2026-12-07), beside the tree's tree_bytes; and
+    # (since session 47, 2026-12-07) its own leaf packets, which it reads
+    # instead of the tree's (the kd leaves regrouped: leaf_bvh.h).
     "bvh_bytes": "fast_render.single_bvh.bytes",
+    "bvh_packet_bytes": "fast_render.single_bvh.packet_bytes",
     # Our second packet mode (since 2026-12-06): the fast mode's packets
     # through the same BVH (its build: single_bvh_build_s).
     "T_R_packets_bvh_runs": "fast_render.packets_bvh.T_R_runs",

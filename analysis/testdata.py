@@ -281,10 +281,10 @@ def fast_render(ratios, t_r=0.16, best=None, robust=None, single=None, passes=No
                                 "primary_s": t_r / 2, "shadow_s": t_r / 2}
         out["single_bvh"] = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios),
                              "primary_s": t_r / 2, "shadow_s": t_r / 2, "build_s": 0.001,
-                             "bytes": 2560}
+                             "bytes": 2560, "packet_bytes": 6400}
         out["packets_bvh"] = {"T_R": t_r, "T_R_runs": [t_r] * len(ratios),
                               "primary_s": t_r / 2, "shadow_s": t_r / 2, "build_s": 0.001,
-                              "bytes": 2560}
+                              "bytes": 2560, "packet_bytes": 6400}
     out.update({"paired_ratio_runs": ratios, "paired_ratio": statistics.median(ratios)})
     if single is not None:
         out["single_paired_ratio_runs"] = list(single)

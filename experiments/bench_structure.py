@@ -44,8 +44,9 @@ def triangle_bvh_summary(records):
     (tri_bvh, tri_bvh_packet; cc/kdtree/triangle_bvh.h) against Embree's
     best mode, paired per round; their packets' tracing time alone per pass
     against Embree's packets (kd_bvh_packet and tri_bvh_packet, as
-    passes_summary); and the bytes each holds per triangle (the kd-tree's
-    tree and its BVH, the triangle BVH, Embree's BVH). What the baseline
+    passes_summary); and the bytes each reads per triangle (the BVH over the
+    kd-tree's leaves with its own leaf packets, before session 47 the tree
+    and that BVH's nodes; the triangle BVH; Embree's BVH). What the baseline
     gains over the kd-tree is the kd-tree's structure; what it still lacks
     against Embree is the kernel. "" when no row has the baseline."""
     out = ["| scene | triangles | best mode / Embree's: kd-tree | best mode / Embree's: "
@@ -70,8 +71,11 @@ def triangle_bvh_summary(records):
         cells = [fmt(values[0]), fmt(values[1]), "%s, %s" % (fmt(values[2]), fmt(values[3])),
                  "%s, %s" % (fmt(values[4]), fmt(values[5]))]
         n = r["n_tri"]
-        sizes = [r.get("tree_bytes", 0) + r.get("bvh_bytes", 0), r.get("tri_bvh_bytes"),
-                 r.get("embree_bvh_bytes")]
+        # What kd_bvh_packet reads: the BVH's nodes and its own leaf packets
+        # (since session 47), before that the tree and the BVH's nodes.
+        ours = (r["bvh_bytes"] + r["bvh_packet_bytes"] if r.get("bvh_packet_bytes")
+                else r.get("tree_bytes", 0) + r.get("bvh_bytes", 0))
+        sizes = [ours, r.get("tri_bvh_bytes"), r.get("embree_bvh_bytes")]
         cells.append(", ".join("-" if not b else "%.0f" % (b / n) for b in sizes))
         out.append("| %s | %s | %s |" % (r["scene"], format(n, ","), " | ".join(cells)))
     if len(out) == 2:

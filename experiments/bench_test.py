@@ -224,6 +224,10 @@ class BenchTest(unittest.TestCase):
                       "0.50 [0.50..0.50], 0.75 [0.75..0.75] | 0.80 [0.80..0.80], "
                       "1.33 [1.33..1.33] | 80, 50, 60 |", text)
         self.assertEqual(len([l for l in text.splitlines() if l.startswith("| s |")]), 1)
+        # Since session 47 the BVH reads its own leaf packets: its nodes and
+        # those, not the tree.
+        own = bench_structure.triangle_bvh_summary([dict(r, bvh_packet_bytes=65000)])
+        self.assertIn("| 75, 50, 60 |", own)
         self.assertIn("Best mode, triangle BVH, Embree's over ours over 1 rows: median 1.12, "
                       "range 1.12 to 1.12, 1 at 1.0 or more.", text)
         # Rows without the baseline: no table.

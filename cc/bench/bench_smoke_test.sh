@@ -192,6 +192,7 @@ check([list(r["tracers"]) for r in twice] ==
 check(twice[0]["validation"]["variants_vs_kd_mismatches"] == {"kd_origin": 0, "kd_bvh": 0},
       "kd_bvh: the kd-tree's answers")
 check(twice[0]["bvh_bytes"] > 0 and twice[0]["bvh_build_s"] >= 0, "kd_bvh: its bytes and build")
+check(twice[0]["bvh_packet_bytes"] >= twice[0]["leaf_layout_bytes"], "kd_bvh: its own leaf packets")
 classes = twice[0]["ray_classes"]["classes"]
 check("shadow" in classes and all(list(c["ns_runs"]) == ["kd_origin", "kd_bvh", "embree"]
                                   and list(c["embree_over"]) == ["kd_origin", "kd_bvh"]

@@ -45,7 +45,7 @@ Json PacketCountsJson(const PacketCounters& c) {
 
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
                                   const RenderOptions& base, const RenderVariant& v,
-                                  CountThrough through, std::shared_ptr<const TriangleBvh> tri) {
+                                  CountThrough through, std::shared_ptr<const LeafBvh> tri) {
   std::unique_ptr<ScopedPacketKernelTarget> target;
   if (!v.kernel.empty()) {
     target = std::make_unique<ScopedPacketKernelTarget>(v.kernel);

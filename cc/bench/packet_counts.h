@@ -45,7 +45,7 @@ enum class CountThrough {
 absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, const View& view,
                                   const RenderOptions& base, const RenderVariant& v,
                                   CountThrough through = CountThrough::kKdTree,
-                                  std::shared_ptr<const TriangleBvh> tri = nullptr);
+                                  std::shared_ptr<const LeafBvh> tri = nullptr);
 
 }  // namespace bench
 }  // namespace kdtree

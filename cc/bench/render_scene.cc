@@ -107,7 +107,7 @@ absl::StatusOr<Validation> Validate(const Scene& s, const RenderOptions& ropt,
   for (const Entry& e : s.variants) {
     if (!e.packets) continue;
     CountThrough through;
-    std::shared_ptr<const TriangleBvh> tri;
+    std::shared_ptr<const LeafBvh> tri;
     if (e.tracer == &s.kd()) {
       through = CountThrough::kKdTree;
     } else if (e.tracer == s.trees->bvh.get()) {
@@ -338,8 +338,11 @@ Json MakeRecord(const Scene& s, const Validation& v, const Lineup& l, const Time
               // monitor, embree_tracer.h bvh_bytes), null without Embree.
               {"tree_bytes", TreeBytes(tree)},
               {"embree_bvh_bytes", embree ? Json(l.embrees[0]->bvh_bytes()) : Json()},
-              // kd_bvh's nodes (its leaves are the tree's) and their build.
-              {"bvh_bytes", s.trees->bvh->bvh().bytes()},
+              // kd_bvh's nodes, its own leaf packets (since 2026-12-07,
+              // session 47: the kd leaves regrouped, leaf_bvh.h) and its
+              // build from the finished tree.
+              {"bvh_bytes", s.trees->bvh->bvh().node_bytes()},
+              {"bvh_packet_bytes", s.trees->bvh->bvh().packet_bytes()},
               {"bvh_build_s", s.trees->bvh_build_seconds},
               // tri_bvh's nodes and leaf packets, and their build; null
               // without it.

@@ -11,15 +11,14 @@
 namespace kdtree {
 namespace testing {
 
-int PacketMismatches(const KdTree& tree, const KdTree& leaves, const LeafBvh& bvh,
-                     const std::vector<Ray>& rays) {
+int PacketMismatches(const KdTree& tree, const LeafBvh& bvh, const std::vector<Ray>& rays) {
   int bad = 0;
   for (size_t i = 0; i < rays.size(); i += kRayPacketSize) {
     const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
     Hit hits[kRayPacketSize];
     bool occluded[kRayPacketSize];
-    IntersectPacketLeafBvh(leaves, bvh, &rays[i], n, hits);
-    OccludedPacketLeafBvh(leaves, bvh, &rays[i], n, nullptr, occluded);
+    IntersectPacketLeafBvh(bvh, &rays[i], n, hits);
+    OccludedPacketLeafBvh(bvh, &rays[i], n, nullptr, occluded);
     for (int l = 0; l < n; ++l) {
       const Hit want = Intersect(tree, rays[i + l]);
       bad += !BitwiseSameHit(hits[l], want) + (occluded[l] != want.hit());
@@ -28,8 +27,7 @@ int PacketMismatches(const KdTree& tree, const KdTree& leaves, const LeafBvh& bv
   return bad;
 }
 
-BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree,
-                                const KdTree& leaves, const LeafBvh& bvh,
+BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree, const LeafBvh& bvh,
                                 const std::vector<Ray>& rays, int brute_force_every) {
   BvhMismatches m;
   const BruteForce bf(soup);
@@ -41,9 +39,9 @@ BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree,
   std::vector<char> shadow_blocked;
   for (size_t i = 0; i < rays.size(); ++i) {
     const Hit want = Intersect(tree, rays[i]);
-    const Hit got = IntersectLeafBvh(leaves, bvh, rays[i]);
+    const Hit got = IntersectLeafBvh(bvh, rays[i]);
     m.closest += !BitwiseSameHit(got, want);
-    m.any += OccludedLeafBvh(leaves, bvh, rays[i]) != want.hit();
+    m.any += OccludedLeafBvh(bvh, rays[i]) != want.hit();
     if (i % brute_force_every == 0) m.closest += !BitwiseSameHit(got, bf.Intersect(rays[i]));
     if (!want.hit()) continue;
     ++m.hits;
@@ -51,7 +49,7 @@ BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree,
     TraversalOptions o = from_end;
     o.origin_tri = want.tri;
     const bool blocked = Occluded(tree, s, o);
-    m.shadow += OccludedLeafBvh(leaves, bvh, s, want.tri) != blocked;
+    m.shadow += OccludedLeafBvh(bvh, s, want.tri) != blocked;
     m.shadows += blocked;
     shadow_rays.push_back(s);
     shadow_origins.push_back(want.tri);
@@ -59,11 +57,11 @@ BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree,
   }
   // Packets of 16 consecutive rays (coherent camera rows among them), each
   // lane against its single ray, bit for bit.
-  m.packets = PacketMismatches(tree, leaves, bvh, rays);
+  m.packets = PacketMismatches(tree, bvh, rays);
   for (size_t i = 0; i < shadow_rays.size(); i += kRayPacketSize) {
     const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, shadow_rays.size() - i));
     bool occluded[kRayPacketSize];
-    OccludedPacketLeafBvh(leaves, bvh, &shadow_rays[i], n, &shadow_origins[i], occluded);
+    OccludedPacketLeafBvh(bvh, &shadow_rays[i], n, &shadow_origins[i], occluded);
     for (int l = 0; l < n; ++l) m.packets += occluded[l] != (shadow_blocked[i + l] != 0);
   }
   return m;

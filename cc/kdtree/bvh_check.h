@@ -15,9 +15,8 @@ namespace kdtree {
 namespace testing {
 
 // The lanes of packets of 16 consecutive rays whose closest hit or any hit
-// through (`leaves`, `bvh`) differs from `tree`'s single ray, bit for bit.
-int PacketMismatches(const KdTree& tree, const KdTree& leaves, const LeafBvh& bvh,
-                     const std::vector<Ray>& rays);
+// through `bvh` differs from `tree`'s single ray, bit for bit.
+int PacketMismatches(const KdTree& tree, const LeafBvh& bvh, const std::vector<Ray>& rays);
 
 struct BvhMismatches {
   int closest = 0;  // single rays' closest hits (and every brute_force_every-th against brute force)
@@ -28,13 +27,12 @@ struct BvhMismatches {
   int shadows = 0;  // shadow rays blocked
 };
 
-// Every query of `rays` through (`leaves`, `bvh`) against `tree` (built from
+// Every query of `rays` through `bvh` against `tree` (built from
 // `soup`): closest and any hit, single and in packets; and from each hit a
 // shadow ray to a light beyond the box, as the renderer spawns it, leaving
 // its origin triangle untested (against the kd-tree searched from the
 // light). Every brute_force_every-th closest hit also against brute force.
-BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree,
-                                const KdTree& leaves, const LeafBvh& bvh,
+BvhMismatches CompareWithKdTree(const TriangleSoup& soup, const KdTree& tree, const LeafBvh& bvh,
                                 const std::vector<Ray>& rays, int brute_force_every);
 
 }  // namespace testing

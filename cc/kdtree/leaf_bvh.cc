@@ -1,12 +1,17 @@
-// The build of the BVH over the kd-tree's leaves (leaf_bvh.h): the boxes of
-// every kd subtree's geometry in one pass down the tree with the cells, then
-// the kd hierarchy collapsed into nodes of up to eight children
+// The build of the BVH over the kd-tree's leaves (leaf_bvh.h): one pass down
+// the kd-tree with the cells splits each leaf into its groups (its flat
+// groups and the rest), copies each group's triangles into packets of its
+// own and bounds them clipped to the cell; the binary hierarchy of the kd
+// nodes and the groups is then collapsed into nodes of up to eight children
 // (wide_collapse.h).
 #include "cc/kdtree/leaf_bvh.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <tuple>
 #include <vector>
 
 #include "cc/geometry/aabb.h"
@@ -16,79 +21,196 @@
 namespace kdtree {
 namespace {
 
+// One triangle of a kd leaf: where it is in the tree's packets.
+struct LaneRef {
+  const float* packet;
+  int lane;
+  uint32_t id;
+};
+
+// The axis (0, 1, 2) on which the three vertices of `t` share their
+// coordinate, the lowest such; -1 when there is none.
+int FlatAxis(const LaneRef& t) {
+  Vec3 v[3];
+  PacketTriangle(t.packet, t.lane, &v[0], &v[1], &v[2]);
+  for (int k = 0; k < 3; ++k) {
+    if (v[0][k] == v[1][k] && v[1][k] == v[2][k]) return k;
+  }
+  return -1;
+}
+
+// The triangles of the kd leaf whose first packet is `first`, in packet order.
+void LeafLanes(const KdTree& tree, uint32_t first, std::vector<LaneRef>* out) {
+  const float* p = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
+  for (;; p += kPacketFloats) {
+    uint32_t ids[kPacketLanes];
+    std::memcpy(ids, p + kPacketIds, sizeof(ids));
+    const bool last = (ids[0] & kLastPacket) != 0;
+    ids[0] &= ~kLastPacket;  // lane 0 always holds a triangle
+    for (int l = 0; l < kPacketLanes; ++l) {
+      if (ids[l] != kPadLane) out->push_back({p, l, ids[l]});
+    }
+    if (last) return;
+  }
+}
+
 class Builder {
  public:
-  Builder(const KdTree& tree, LeafBvh* out)
-      : tree_(tree), out_(out), box_(tree.nodes.size()) {}
+  Builder(const KdTree& tree, LeafBvh* out) : tree_(tree), out_(out) {}
 
   void Build() {
-    if (Bound(0, tree_.bounds).Valid()) wide_collapse::Collapse(*this, 0, out_);
+    out_->leaves.bounds = tree_.bounds;
+    out_->leaves.triangles = tree_.triangles;
+    out_->leaves.config = tree_.config;
+    const int64_t root = Node(0, tree_.bounds);
+    if (root < 0) return;
+    WritePackets();
+    wide_collapse::Collapse(*this, static_cast<uint32_t>(root), out_);
   }
 
-  // The hierarchy as wide_collapse::Collapse reads it (kd node indices).
-  bool IsLeaf(uint32_t index) const { return tree_.nodes[index].is_leaf(); }
-  const AABB& Box(uint32_t index) const { return box_[index]; }
-  // The children of kd node `index` that hold geometry.
-  void Children(uint32_t index, std::vector<uint32_t>* list) const {
-    const uint32_t left = index + 1, right = tree_.nodes[index].index();
-    if (box_[left].Valid()) list->push_back(left);
-    if (box_[right].Valid()) list->push_back(right);
+  // The binary hierarchy as wide_collapse::Collapse reads it.
+  bool IsLeaf(uint32_t i) const { return v_[i].leaf; }
+  const AABB& Box(uint32_t i) const { return v_[i].box; }
+  void Children(uint32_t i, std::vector<uint32_t>* list) const {
+    list->push_back(v_[i].kid[0]);
+    list->push_back(v_[i].kid[1]);
   }
-  uint32_t FirstPacket(uint32_t index) const { return tree_.nodes[index].index(); }
-  // The number of packets of the leaf at `index`.
-  uint32_t Packets(uint32_t index) const {
-    uint32_t count = 1;
-    const float* p = tree_.leaf_soa.data() + static_cast<size_t>(FirstPacket(index)) * kPacketFloats;
-    for (;; p += kPacketFloats, ++count) {
-      uint32_t id0;
-      std::memcpy(&id0, p + kPacketIds, sizeof(id0));
-      if (id0 & kLastPacket) return count;
-    }
-  }
+  uint32_t FirstPacket(uint32_t i) const { return v_[i].first; }
+  uint32_t Packets(uint32_t i) const { return v_[i].packets; }
 
  private:
-  // The box of the triangles under kd node `index` whose cell is `cell`,
-  // each triangle's box clipped to its leaf's cell; empty when there are
-  // none. Kept in box_.
-  AABB Bound(uint32_t index, const AABB& cell) {
-    const KdNode& n = tree_.nodes[index];
-    AABB b;
-    if (n.is_leaf()) {
-      if (n.index() != kEmptyLeaf) b = LeafBox(n.index(), cell);
-    } else {
-      AABB left = cell, right = cell;
-      left.hi[n.axis()] = n.split;
-      right.lo[n.axis()] = n.split;
-      b = Bound(index + 1, left);
-      b.Extend(Bound(n.index(), right));
-    }
-    box_[index] = b;
-    return b;
+  struct V {
+    AABB box;
+    bool leaf = false;
+    size_t begin = 0, count = 0;      // a leaf's triangles in refs_
+    uint32_t first = 0, packets = 0;  // its packets in out_->leaves.leaf_soa
+    uint32_t kid[2] = {0, 0};         // an inner node's children in v_
+  };
+
+  // A node over subtrees a and b (either may be -1: none); its index.
+  int64_t Join(int64_t a, int64_t b) {
+    if (a < 0) return b;
+    if (b < 0) return a;
+    V n;
+    n.box = v_[a].box;
+    n.box.Extend(v_[b].box);
+    n.kid[0] = static_cast<uint32_t>(a);
+    n.kid[1] = static_cast<uint32_t>(b);
+    v_.push_back(n);
+    return static_cast<int64_t>(v_.size() - 1);
   }
 
-  AABB LeafBox(uint32_t first_packet, const AABB& cell) const {
-    AABB b;
-    const float* p = tree_.leaf_soa.data() + static_cast<size_t>(first_packet) * kPacketFloats;
-    for (;; p += kPacketFloats) {
-      uint32_t ids[kPacketLanes];
-      std::memcpy(ids, p + kPacketIds, sizeof(ids));
-      for (int l = 0; l < kPacketLanes; ++l) {
-        if (ids[l] == kPadLane) continue;
-        Vec3 v[3];
-        PacketTriangle(p, l, &v[0], &v[1], &v[2]);
-        AABB t;
-        for (const Vec3& x : v) t.Extend(x);
-        t.lo = Max(t.lo, cell.lo);
-        t.hi = Min(t.hi, cell.hi);
-        if (t.Valid()) b.Extend(t);
+  // Kd node `index`, whose cell is `cell`: its subtree's index, -1 when it
+  // holds no geometry.
+  int64_t Node(uint32_t index, const AABB& cell) {
+    const KdNode& n = tree_.nodes[index];
+    if (n.is_leaf()) return n.index() == kEmptyLeaf ? -1 : Leaf(n.index(), cell);
+    AABB left = cell, right = cell;
+    left.hi[n.axis()] = n.split;
+    right.lo[n.axis()] = n.split;
+    const int64_t a = Node(index + 1, left);
+    return Join(a, Node(n.index(), right));
+  }
+
+  // A kd leaf's groups: per (axis, coordinate) the triangles flat on that
+  // plane, then the others; each a BVH leaf, joined in that order.
+  int64_t Leaf(uint32_t first, const AABB& cell) {
+    lanes_.clear();
+    LeafLanes(tree_, first, &lanes_);
+    keyed_.clear();
+    for (const LaneRef& t : lanes_) {
+      const int axis = FlatAxis(t);
+      Vec3 a, b, c;
+      PacketTriangle(t.packet, t.lane, &a, &b, &c);
+      // The others sort last (axis 3), each group in the leaf's order.
+      keyed_.push_back({axis < 0 ? 3 : axis, axis < 0 ? 0.0f : a[axis], &t - lanes_.data()});
+    }
+    std::sort(keyed_.begin(), keyed_.end());
+    int64_t node = -1;
+    for (size_t i = 0; i < keyed_.size();) {
+      size_t j = i;
+      group_.clear();
+      for (; j < keyed_.size() && std::get<0>(keyed_[j]) == std::get<0>(keyed_[i]) &&
+             std::get<1>(keyed_[j]) == std::get<1>(keyed_[i]);
+           ++j) {
+        group_.push_back(lanes_[std::get<2>(keyed_[j])]);
       }
-      if (ids[0] & kLastPacket) return b;
+      node = Join(node, Group(cell));
+      i = j;
+    }
+    return node;
+  }
+
+  // group_ as a BVH leaf, its triangles kept in refs_ and its box the union
+  // of their boxes clipped to `cell`; -1 when that is empty (no triangle of
+  // the group meets the cell: none holds a hit there).
+  int64_t Group(const AABB& cell) {
+    V g;
+    g.leaf = true;
+    for (const LaneRef& t : group_) {
+      Vec3 v[3];
+      PacketTriangle(t.packet, t.lane, &v[0], &v[1], &v[2]);
+      AABB b;
+      for (const Vec3& x : v) b.Extend(x);
+      b.lo = Max(b.lo, cell.lo);
+      b.hi = Min(b.hi, cell.hi);
+      if (b.Valid()) g.box.Extend(b);
+    }
+    if (!g.box.Valid()) return -1;
+    g.begin = refs_.size();
+    g.count = group_.size();
+    refs_.insert(refs_.end(), group_.begin(), group_.end());
+    v_.push_back(g);
+    return static_cast<int64_t>(v_.size() - 1);
+  }
+
+  // Each BVH leaf's packets, in the order the leaves were made (the kd
+  // leaves' depth-first order), into one allocation.
+  void WritePackets() {
+    uint64_t packets = 0;
+    for (V& g : v_) {
+      if (!g.leaf) continue;
+      g.first = static_cast<uint32_t>(packets);
+      g.packets = static_cast<uint32_t>((g.count + kPacketLanes - 1) / kPacketLanes);
+      packets += g.packets;
+    }
+    // A child slot holds kLeafBit | the first packet. Unreachable within
+    // the build's memory budget (2^31 packets are 320 GiB), but never
+    // silently wrong.
+    if (packets >= LeafBvhNode::kLeafBit) {
+      std::fprintf(stderr, "BuildLeafBvh: %llu leaf packets, more than a node can address\n",
+                   static_cast<unsigned long long>(packets));
+      std::abort();
+    }
+    HugeBuffer<float>& soa = out_->leaves.leaf_soa;
+    soa.assign(static_cast<size_t>(packets) * kPacketFloats, 0.0f);
+    for (const V& g : v_) {
+      if (!g.leaf) continue;
+      float* out = soa.data() + static_cast<size_t>(g.first) * kPacketFloats;
+      for (size_t j = 0; j < static_cast<size_t>(g.packets) * kPacketLanes; ++j) {
+        float* q = out + (j / kPacketLanes) * kPacketFloats;
+        const int l = static_cast<int>(j % kPacketLanes);
+        uint32_t id = kPadLane;  // its vertices stay zero
+        if (j < g.count) {
+          const LaneRef& t = refs_[g.begin + j];
+          for (int w = 0; w < 9; ++w) q[w * kPacketLanes + l] = t.packet[w * kPacketLanes + t.lane];
+          id = t.id;
+        }
+        if (l == 0 && j / kPacketLanes + 1 == g.packets) id |= kLastPacket;
+        std::memcpy(q + kPacketIds + l, &id, sizeof(id));
+      }
     }
   }
 
   const KdTree& tree_;
   LeafBvh* out_;
-  std::vector<AABB> box_;  // per kd node
+  std::vector<V> v_;
+  std::vector<LaneRef> refs_;  // the BVH leaves' triangles, leaf after leaf
+  // Scratch of Leaf and Group: the leaf's triangles, their group keys
+  // (axis, coordinate, index in lanes_), one group's triangles.
+  std::vector<LaneRef> lanes_;
+  std::vector<std::tuple<int, float, size_t>> keyed_;
+  std::vector<LaneRef> group_;
 };
 
 }  // namespace

@@ -5,26 +5,48 @@
 // ray that crosses the kd-tree's box and hits nothing costs about twice what
 // it costs Embree's BVH, and on the hairballs every class of ray loses by
 // 0.44-0.66: a ray walks 20-70 split planes through dense geometry, where a
-// BVH tests a few wide nodes. This structure keeps everything the kd-tree
-// built (its partition, its leaves, their packets: KdTree::leaf_soa, read in
-// place) and replaces the walk: each node holds up to eight children, each
-// child the box of the geometry under a kd subtree, collapsed from the
+// BVH tests a few wide nodes. This structure keeps what the kd-tree built
+// (its partition, its leaves and their triangles) and replaces the walk: each
+// node holds up to eight children, each child the box of the geometry under
+// a kd subtree or a leaf's group (below), collapsed from the
 // kd-tree's own hierarchy (a kd node's children are expanded, the one with
 // the largest surface area first, until eight are reached or only leaves
 // remain; Wald, Benthin & Boulos, "Getting rid of packets", RT 2008, and
 // Wald et al., "Embree", ACM TOG 33(4), 2014, for eight-wide nodes tested in
 // one vector). A leaf's box is the union of its triangles' boxes each
-// clipped to the leaf's cell, so the boxes of different leaves do not
+// clipped to the leaf's cell, so the boxes of different kd leaves do not
 // overlap (they may touch), as the cells do not; a bounded kd-tree in the
 // sense of Woop, Marmitt & Slusallek ("B-KD trees for hardware accelerated
 // ray tracing of dynamic scenes", Graphics Hardware 2006), but wide.
 //
+// Flat groups (ours; since 2026-12-07, session 47). Each kd leaf becomes one
+// BVH leaf per group of its triangles: per axis-aligned plane, the triangles
+// whose three vertices lie on it, and then the triangles flat on no such
+// plane; each group's box its triangles' boxes clipped to the cell, its
+// triangles in packets of their own (padded to whole packets of four), which
+// the BVH holds (LeafBvh::leaves) and reads instead of the tree's. A flat
+// group's box is flat: a shadow ray leaving that plane (its origin is offset
+// past it: spawn.h) does not enter it, where it entered the kd leaf's box,
+// which holds the leaf's other geometry too (on morse-indoor that leaf took
+// 3.7 of a shadow ray's 5.2 triangle tests). Measured before it was built in
+// (a scratch build: the grouped BVH as a second tracer of the same tree,
+// render_bench --envs, 5 paired rounds, one process, all 25 standard scenes
+// of 50,000 triangles or more): kd_bvh_packet's renders took 0.960-1.009 of
+// the time of the BVH over whole kd leaves (median 0.989; lost-empire 0.960,
+// morse-kitchen 0.969, 8 scenes below 0.98, the worst morse-trees 1.009),
+// where the same tree twice gave 0.972-1.007 (median 0.999). Groups only of
+// at least m triangles a plane (the others with the rest) gained less: m = 2,
+// 0.972-1.000 on lost-empire, morse-kitchen, city2 and morse-indoor and 0.986
+// on city; m = 4, lost-empire alone (0.976). The packets are 0-21 % larger
+// than the tree's on 23 of the 25 scenes, 80 % on city and city2 (groups of
+// one or two triangles).
+//
 // Exactness (traversal in leaf_bvh_traversal.cc). The closest hit's point p
 // on triangle T lies in the closed cell of some leaf that references T (the
 // builders keep a triangle in every leaf whose closed cell its surface meets,
-// which the kd-tree's own traversal relies on), and box(leaf) contains T's
-// part in that cell, since a box of T clipped to the cell contains it (min
-// and max are exact). The box test is conservative (Ize, "Robust BVH Ray
+// which the kd-tree's own traversal relies on), and the box of T's group in
+// that leaf contains T's part in that cell, since a box of T clipped to the
+// cell contains it (min and max are exact). The box test is conservative (Ize, "Robust BVH Ray
 // Traversal", JCGT 2(2), 2013: the slab distances are within gamma(3) of the
 // exact ones, and the interval is widened by 4 u on each side), and a box is
 // passed over only when it starts beyond the best hit by more than the
@@ -34,8 +56,8 @@
 // preset_check.cc).
 //
 // Memory: 256 bytes a node, 5.7 to 10 bytes a triangle on the 25 standard
-// scenes of 50k triangles or more, beside the tree's 49 to 147
-// (render_bench's record: bvh_bytes); the leaves are the kd-tree's.
+// scenes of 50k triangles or more (render_bench's record: bvh_bytes), and
+// its own leaf packets (bvh_packet_bytes), about as many as the tree's.
 //
 // Measured (render_bench --classes, sah-packet, 25 standard scenes, two
 // processes of 5 paired rounds, 2026-12-06; README, "What the reproduction
@@ -180,33 +202,6 @@
 //    bunny, 4.5-4.6 % on hairball-1m and courtyard-1m and 1.1-2.9 % on
 //    lost-empire, morse-trees and city2; a whole triangle step was a repeat in
 //    0.5-2.8 % of the steps: too few to pay for a lookup at every step.
-//  - Measured, not yet built in (a scratch build, render_bench --envs, the
-//    grouped BVH as a second tracer of the same tree, 7 paired rounds;
-//    2026-12-07): each kd leaf's triangles split into groups for the BVH, the
-//    triangles whose three vertices lie on one axis-aligned plane, per plane
-//    with at least m of them, and the rest, each group a BVH leaf with its own
-//    packets (a copy of the leaf packets, regrouped) and the box of its
-//    triangles clipped to the cell; exact as this BVH is (render_bench's
-//    validation: 0 mismatches). A flat group's box is flat, and a shadow ray
-//    leaving that plane (its origin offset past it: spawn.h) does not enter
-//    it, where it enters the kd leaf's box, which holds the leaf's other
-//    geometry too (on morse-indoor that leaf took 3.7 of a shadow ray's 5.2
-//    triangle tests). With m = 1, renders took 0.969-0.981 of kd_bvh_packet's
-//    time on lost-empire, morse-indoor, morse-kitchen and city2 (shadow pass
-//    0.948-0.982, camera pass 0.959-1.000), 0.975 on courtyard-1m and 0.997 on
-//    bunny; with m = 2, in two processes, 0.972-1.000 on those four and 0.986
-//    on city; the same tree twice gave 0.992-1.010. With m = 4 only
-//    lost-empire gained. On all 25 standard scenes of 50,000 triangles or more
-//    (m = 1, 5 paired rounds, one process): 0.960-1.009, median 0.989, 8
-//    scenes below 0.98 (lost-empire 0.960, morse-kitchen 0.969), the worst
-//    morse-trees 1.009; the same tree twice 0.972-1.007, median 0.999. The
-//    regrouped packets, padded per group to whole packets of four, are 0-21 %
-//    larger than the tree's on 23 of the 25 scenes and 80 % on city and city2
-//    (groups of one or two triangles). A copy of the packets with every
-//    triangle in one group (m above any group) made hairball-1m 0.978 by
-//    itself, a layout effect, not the groups', against 0.994-1.022 elsewhere.
-//    To keep it: the packets regrouped in place, or a BVH that owns them and
-//    the memory table that counts them.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
@@ -239,33 +234,42 @@ struct alignas(64) LeafBvhNode {
 };
 static_assert(sizeof(LeafBvhNode) == 256, "four cache lines a node");
 
+// The hierarchy with the leaf packets it reaches: all its traversals read.
 struct LeafBvh {
-  // nodes[0] is the root; empty when the tree has no triangle in a leaf.
+  // nodes[0] is the root; empty when there is no triangle to reach.
   std::vector<LeafBvhNode> nodes;
-  size_t bytes() const { return nodes.size() * sizeof(LeafBvhNode); }
+  // What the traversals read of a tree, and nothing else: `leaves.leaf_soa`
+  // holds each BVH leaf's triangles in packets (leaf_layout.h; a leaf's
+  // packets end with kLastPacket), `leaves.bounds` the scene's box,
+  // `leaves.triangles` the soup's triangle count; `leaves.nodes` is empty.
+  KdTree leaves;
+  size_t node_bytes() const { return nodes.size() * sizeof(LeafBvhNode); }
+  size_t packet_bytes() const { return leaves.leaf_soa.size() * sizeof(float); }
+  size_t bytes() const { return node_bytes() + packet_bytes(); }
 };
 
-// The hierarchy over `tree`'s non-empty leaves. `tree` must outlive its use.
+// The hierarchy over `tree`'s non-empty leaves, each split into its flat
+// groups and the rest (above), with their packets copied from the tree's:
+// it does not refer to `tree`.
 LeafBvh BuildLeafBvh(const KdTree& tree);
 
-// The kd-tree's queries (traversal.h, watertight test), through `bvh` built
-// from `tree`: Intersect's closest hit, bit for bit, and whether any triangle
-// but origin_tri (kNoHit: none) is hit (Occluded with that origin
-// triangle). Children are visited nearest first for the closest hit and
-// farthest first for any hit (the kd-tree's from_end order: a shadow ray
-// searched from the light).
-Hit IntersectLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray);
-bool OccludedLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray,
-                     uint32_t origin_tri = kNoHit);
+// The kd-tree's queries (traversal.h, watertight test), through `bvh`:
+// Intersect's closest hit, bit for bit, and whether any triangle but
+// origin_tri (kNoHit: none) is hit (Occluded with that origin triangle).
+// Children are visited nearest first for the closest hit and farthest first
+// for any hit (the kd-tree's from_end order: a shadow ray searched from the
+// light).
+Hit IntersectLeafBvh(const LeafBvh& bvh, const Ray& ray);
+bool OccludedLeafBvh(const LeafBvh& bvh, const Ray& ray, uint32_t origin_tri = kNoHit);
 
 // The same for packets of n <= 16 rays, one ray per vector lane
 // (leaf_bvh_packet_kernel.cc): each ray's answer is the single ray's, bit
 // for bit. origin_tris may be null (no ray has one). `counters` (may be
 // null) gathers what the kernel did, as the kd-tree's packet kernel counts
 // it (ray_packet.h), its inner steps the BVH's nodes.
-void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                            Hit* hits, PacketCounters* counters = nullptr);
-void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+void IntersectPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n, Hit* hits,
+                            PacketCounters* counters = nullptr);
+void OccludedPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n,
                            const uint32_t* origin_tris, bool* occluded,
                            PacketCounters* counters = nullptr);
 

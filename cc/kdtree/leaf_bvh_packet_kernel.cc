@@ -93,11 +93,11 @@ struct BvhStack {
 // shadow pass took 0.98-1.03 times as long (a shadow ray often stops
 // before the leaf's end).
 template <bool kAnyHit>
-HWY_INLINE void PrefetchChild(const KdTree& tree, const LeafBvhNode* nodes, uint32_t child,
+HWY_INLINE void PrefetchChild(const KdTree& leaves, const LeafBvhNode* nodes, uint32_t child,
                               int packets) {
   const bool leaf = (child & LeafBvhNode::kLeafBit) != 0;
   const char* q =
-      leaf ? reinterpret_cast<const char*>(tree.leaf_soa.data() +
+      leaf ? reinterpret_cast<const char*>(leaves.leaf_soa.data() +
                                            static_cast<size_t>(child & ~LeafBvhNode::kLeafBit) *
                                                kPacketFloats)
            : reinterpret_cast<const char*>(nodes + child);
@@ -150,7 +150,7 @@ HWY_INLINE uint32_t EnterLanes(D d, const LeafBvhNode& node, int s, const int ne
 // The group's lanes in kV vectors; the descent, the leaf and the pop share
 // the lanes' masks and best hits (one function, as TraceLanes).
 template <bool kAnyHit, bool kCount, int kV, class D>
-HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+HWY_INLINE void TraceBvhLanes(D d, const LeafBvh& bvh, const PacketRays& p,
                               const Group& g, uint32_t lanes, const SlotFilter& filter0,
                               Hit* best, PacketCounters* counters) {
   PacketCounters* const c = kCount ? counters : nullptr;  // null: no counting code
@@ -197,7 +197,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
       if (kAnyHit && __builtin_popcount(lanes) <= kFewLanes) {
         count = FewLaneChildren(node, p, lanes, near_row, far_row, t_near, hit, slots);
         for (int i = 0; i < count; ++i) {
-          PrefetchChild<true>(tree, nodes, node.child[slots[i]], node.packets[slots[i]]);
+          PrefetchChild<true>(bvh.leaves, nodes, node.child[slots[i]], node.packets[slots[i]]);
         }
       } else {
         uint32_t candidates = filter.on
@@ -210,7 +210,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
                                                slack, bl, t_near[s]);
           m &= lanes;
           if (m == 0) continue;
-          PrefetchChild<kAnyHit>(tree, nodes, node.child[s], node.packets[s]);
+          PrefetchChild<kAnyHit>(bvh.leaves, nodes, node.child[s], node.packets[s]);
           hit[s] = m;
           slots[count++] = s;
         }
@@ -248,7 +248,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
       const uint32_t found_before = found;
       if (kCount) CountStep(lanes, &c->leaf_steps, &c->lanes.leaf_visits);
       for (int v = 0; v < kV; ++v) {
-        TestLeafVector<kAnyHit>(d, tree, p, frames[v], g, v * n, child & ~LeafBvhNode::kLeafBit,
+        TestLeafVector<kAnyHit>(d, bvh.leaves, p, frames[v], g, v * n, child & ~LeafBvhNode::kLeafBit,
                                 &lanes, &found, &bl[v], c);
       }
       if (!kAnyHit && found != found_before) filter.tfar_hi = far_bound();
@@ -280,7 +280,7 @@ HWY_INLINE void TraceBvhLanes(D d, const KdTree& tree, const LeafBvh& bvh, const
 }
 
 template <bool kCount>
-HWY_INLINE void TraceBvhGroupFor(const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+HWY_INLINE void TraceBvhGroupFor(const LeafBvh& bvh, const PacketRays& p,
                                  const Group& g, bool any_hit, Hit* best, PacketCounters* c) {
   const hn::ScalableTag<float> d;
   constexpr int kV = static_cast<int>(kLanes / hn::MaxLanes(d));
@@ -295,19 +295,19 @@ HWY_INLINE void TraceBvhGroupFor(const KdTree& tree, const LeafBvh& bvh, const P
                                 ? SlotFilter()
                                 : MakeSlotFilter(p, g.lanes);
   if (any_hit) {
-    TraceBvhLanes<true, kCount, kV>(d, tree, bvh, p, g, g.lanes, filter, best, c);
+    TraceBvhLanes<true, kCount, kV>(d, bvh, p, g, g.lanes, filter, best, c);
   } else {
-    TraceBvhLanes<false, kCount, kV>(d, tree, bvh, p, g, g.lanes, filter, best, c);
+    TraceBvhLanes<false, kCount, kV>(d, bvh, p, g, g.lanes, filter, best, c);
   }
 }
 
-void TraceBvhGroupImpl(const KdTree& tree, const LeafBvh& bvh, const PacketRays& p,
+void TraceBvhGroupImpl(const LeafBvh& bvh, const PacketRays& p,
                        const Group& g, bool any_hit, Hit* best, PacketCounters* counters) {
   if (g.lanes == 0) return;
   if (counters != nullptr) {
-    TraceBvhGroupFor<true>(tree, bvh, p, g, any_hit, best, counters);
+    TraceBvhGroupFor<true>(bvh, p, g, any_hit, best, counters);
   } else {
-    TraceBvhGroupFor<false>(tree, bvh, p, g, any_hit, best, nullptr);
+    TraceBvhGroupFor<false>(bvh, p, g, any_hit, best, nullptr);
   }
 }
 
@@ -326,11 +326,10 @@ namespace {
 
 // Each live lane's query through `bvh`, group by group (counted in
 // `counters` if not null, as ray_packet.cc's TracePacket counts).
-void TraceBvhPacket(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                    const uint32_t* origins, bool any_hit, Hit (&best)[kRayPacketSize],
-                    PacketCounters* counters) {
+void TraceBvhPacket(const LeafBvh& bvh, const Ray* rays, int n, const uint32_t* origins,
+                    bool any_hit, Hit (&best)[kRayPacketSize], PacketCounters* counters) {
   packet_internal::PacketRays p;
-  packet_internal::PreparePacket(tree, rays, n, origins, &p);
+  packet_internal::PreparePacket(bvh.leaves, rays, n, origins, &p);
   for (int i = 0; i < n; ++i) {
     if (p.live & (1u << i)) best[i].t = p.tmax[i];
   }
@@ -341,30 +340,30 @@ void TraceBvhPacket(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int
   for (uint32_t rest = p.live; rest != 0;) {
     const packet_internal::Group g = packet_internal::NextGroup(p, &rest);
     if (counters != nullptr) ++counters->groups;
-    HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(tree, bvh, p, g, any_hit, best,
+    HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(bvh, p, g, any_hit, best,
                                                              counters);
   }
 }
 
 }  // namespace
 
-void IntersectPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
-                            Hit* hits, PacketCounters* counters) {
+void IntersectPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n, Hit* hits,
+                            PacketCounters* counters) {
   if (bvh.nodes.empty()) {
-    for (int i = 0; i < n; ++i) hits[i] = IntersectLeafBvh(tree, bvh, rays[i]);
+    for (int i = 0; i < n; ++i) hits[i] = IntersectLeafBvh(bvh, rays[i]);
     return;
   }
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = kNoHit;
   Hit best[kRayPacketSize];
-  TraceBvhPacket(tree, bvh, rays, n, origins, false, best, counters);
+  TraceBvhPacket(bvh, rays, n, origins, false, best, counters);
   for (int i = 0; i < n; ++i) {
     hits[i] = best[i];
     if (!hits[i].hit()) hits[i].t = INFINITY;
   }
 }
 
-void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* rays, int n,
+void OccludedPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n,
                            const uint32_t* origin_tris, bool* occluded,
                            PacketCounters* counters) {
   if (bvh.nodes.empty()) {
@@ -374,7 +373,7 @@ void OccludedPacketLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray* ra
   uint32_t origins[kRayPacketSize];
   for (int i = 0; i < n; ++i) origins[i] = origin_tris != nullptr ? origin_tris[i] : kNoHit;
   Hit best[kRayPacketSize];
-  TraceBvhPacket(tree, bvh, rays, n, origins, true, best, counters);
+  TraceBvhPacket(bvh, rays, n, origins, true, best, counters);
   for (int i = 0; i < n; ++i) occluded[i] = best[i].hit();
 }
 

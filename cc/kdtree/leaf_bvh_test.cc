@@ -39,7 +39,7 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
   for (const Ray& r : testing::GridAxisRays(3000, 9)) rays.push_back(r);
-  const testing::BvhMismatches m = testing::CompareWithKdTree(soup, *tree, *tree, bvh, rays, 16);
+  const testing::BvhMismatches m = testing::CompareWithKdTree(soup, *tree, bvh, rays, 16);
   EXPECT_EQ(m.closest, 0);
   EXPECT_EQ(m.any, 0);
   EXPECT_EQ(m.shadow, 0);
@@ -50,7 +50,7 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
     for (int s = 0; s < kBvhWidth; ++s) {
       uint32_t want = 0;
       if (node.child[s] != LeafBvhNode::kNone && (node.child[s] & LeafBvhNode::kLeafBit)) {
-        const float* p = tree->leaf_soa.data() +
+        const float* p = bvh.leaves.leaf_soa.data() +
                          static_cast<size_t>(node.child[s] & ~LeafBvhNode::kLeafBit) * kPacketFloats;
         for (uint32_t id0 = 0; !(id0 & kLastPacket); p += kPacketFloats, ++want) {
           std::memcpy(&id0, p + kPacketIds, sizeof(id0));
@@ -90,7 +90,7 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
   for (const std::string& target : PacketKernelTargets()) {
     ScopedPacketKernelTarget scoped(target);
     ASSERT_TRUE(scoped.ok()) << target;
-    EXPECT_EQ(testing::PacketMismatches(*tree, *tree, bvh, rays), 0) << target;
+    EXPECT_EQ(testing::PacketMismatches(*tree, bvh, rays), 0) << target;
   }
 }
 
@@ -131,7 +131,7 @@ TEST(LeafBvh, FewRayAnyHitPacketsOnEveryTarget) {
     for (size_t i = 0, n = 1; i < rays.size(); i += n, n = n % 5 + 1) {
       const int m = static_cast<int>(std::min(n, rays.size() - i));
       bool occluded[kRayPacketSize];
-      OccludedPacketLeafBvh(*tree, bvh, &rays[i], m, &origins[i], occluded);
+      OccludedPacketLeafBvh(bvh, &rays[i], m, &origins[i], occluded);
       for (int l = 0; l < m; ++l) bad += occluded[l] != want[i + l];
     }
     EXPECT_EQ(bad, 0) << target;
@@ -154,10 +154,10 @@ TEST(LeafBvh, PacketCountsChangeNoAnswer) {
     const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - i));
     Hit hits[kRayPacketSize], counted_hits[kRayPacketSize];
     bool occluded[kRayPacketSize], counted_occluded[kRayPacketSize];
-    IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, hits);
-    IntersectPacketLeafBvh(*tree, bvh, &rays[i], n, counted_hits, &closest);
-    OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, occluded);
-    OccludedPacketLeafBvh(*tree, bvh, &rays[i], n, nullptr, counted_occluded, &any);
+    IntersectPacketLeafBvh(bvh, &rays[i], n, hits);
+    IntersectPacketLeafBvh(bvh, &rays[i], n, counted_hits, &closest);
+    OccludedPacketLeafBvh(bvh, &rays[i], n, nullptr, occluded);
+    OccludedPacketLeafBvh(bvh, &rays[i], n, nullptr, counted_occluded, &any);
     for (int l = 0; l < n; ++l) {
       bad += !testing::BitwiseSameHit(hits[l], counted_hits[l]) +
              (occluded[l] != counted_occluded[l]);
@@ -201,6 +201,67 @@ TEST(LeafBvh, SlabWideningIsMonotone) {
   EXPECT_EQ(bad, 0);
 }
 
+// The triangle ids of the packets at `soa`, pads left out.
+std::vector<uint32_t> PacketIds(const float* soa, size_t floats) {
+  std::vector<uint32_t> ids;
+  for (size_t i = 0; i < floats; i += kPacketFloats) {
+    for (int l = 0; l < kPacketLanes; ++l) {
+      uint32_t id;
+      std::memcpy(&id, soa + i + kPacketIds + l, sizeof(id));
+      if (l == 0) id &= ~kLastPacket;
+      if (id != (kPadLane & ~kLastPacket) && id != kPadLane) ids.push_back(id);
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+// Each BVH leaf holds one kd leaf's triangles flat on one axis-aligned plane,
+// or its triangles flat on none; together they hold the tree's references.
+TEST(LeafBvh, FlatGroups) {
+  const TriangleSoup soup = testing::NamedScene("voxels");
+  absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
+  ASSERT_TRUE(tree.ok());
+  const LeafBvh bvh = BuildLeafBvh(*tree);
+  EXPECT_EQ(PacketIds(bvh.leaves.leaf_soa.data(), bvh.leaves.leaf_soa.size()),
+            PacketIds(tree->leaf_soa.data(), tree->leaf_soa.size()));
+  int leaves = 0, flat = 0, mixed = 0;
+  for (const LeafBvhNode& node : bvh.nodes) {
+    for (int s = 0; s < kBvhWidth; ++s) {
+      if (node.child[s] == LeafBvhNode::kNone || !(node.child[s] & LeafBvhNode::kLeafBit)) continue;
+      ++leaves;
+      const float* p = bvh.leaves.leaf_soa.data() +
+                       static_cast<size_t>(node.child[s] & ~LeafBvhNode::kLeafBit) * kPacketFloats;
+      int plane_axis = -2;
+      float plane = 0;
+      bool same = true;
+      for (uint32_t id0 = 0; !(id0 & kLastPacket); p += kPacketFloats) {
+        std::memcpy(&id0, p + kPacketIds, sizeof(id0));
+        for (int l = 0; l < kPacketLanes; ++l) {
+          uint32_t id;
+          std::memcpy(&id, p + kPacketIds + l, sizeof(id));
+          if (l > 0 && id == kPadLane) continue;
+          Vec3 v[3];
+          PacketTriangle(p, l, &v[0], &v[1], &v[2]);
+          int axis = -1;
+          for (int k = 2; k >= 0; --k) {
+            if (v[0][k] == v[1][k] && v[1][k] == v[2][k]) axis = k;
+          }
+          if (plane_axis == -2) {
+            plane_axis = axis;
+            plane = axis >= 0 ? v[0][axis] : 0;
+          }
+          same &= axis == plane_axis && (axis < 0 || v[0][axis] == plane);
+        }
+      }
+      flat += plane_axis >= 0;
+      mixed += !same;
+    }
+  }
+  EXPECT_EQ(mixed, 0);
+  EXPECT_GT(flat, leaves / 2);  // the voxels' faces are all flat
+}
+
 TEST(LeafBvh, EmptyTreeAndMisses) {
   TriangleSoup soup;
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, Config());
@@ -209,8 +270,8 @@ TEST(LeafBvh, EmptyTreeAndMisses) {
   EXPECT_TRUE(bvh.nodes.empty());
   Ray r;
   r.dir = Vec3(0, 0, 1);
-  EXPECT_FALSE(IntersectLeafBvh(*tree, bvh, r).hit());
-  EXPECT_FALSE(OccludedLeafBvh(*tree, bvh, r));
+  EXPECT_FALSE(IntersectLeafBvh(bvh, r).hit());
+  EXPECT_FALSE(OccludedLeafBvh(bvh, r));
 }
 
 TEST(LeafBvh, SingleLeafAndBadRays) {
@@ -223,15 +284,15 @@ TEST(LeafBvh, SingleLeafAndBadRays) {
   Ray r;
   r.origin = Vec3(0.25f, 0.25f, 1);
   r.dir = Vec3(0, 0, -1);
-  const Hit h = IntersectLeafBvh(*tree, bvh, r);
+  const Hit h = IntersectLeafBvh(bvh, r);
   EXPECT_EQ(h.tri, 0u);
   EXPECT_EQ(h.t, 1.0f);
-  EXPECT_TRUE(OccludedLeafBvh(*tree, bvh, r));
-  EXPECT_FALSE(OccludedLeafBvh(*tree, bvh, r, 0));  // its origin triangle
+  EXPECT_TRUE(OccludedLeafBvh(bvh, r));
+  EXPECT_FALSE(OccludedLeafBvh(bvh, r, 0));  // its origin triangle
   r.dir = Vec3(NAN, 0, -1);
-  EXPECT_FALSE(IntersectLeafBvh(*tree, bvh, r).hit());
+  EXPECT_FALSE(IntersectLeafBvh(bvh, r).hit());
   r.dir = Vec3(0, 0, 0);
-  EXPECT_FALSE(OccludedLeafBvh(*tree, bvh, r));
+  EXPECT_FALSE(OccludedLeafBvh(bvh, r));
 }
 
 }  // namespace

@@ -39,19 +39,20 @@ struct BoxRay {
 // One function for the same reason as traversal.cc's Traverse: the set-up,
 // the stack and the best hit stay in registers.
 template <bool kAnyHit>
-Hit TraceLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
+Hit TraceLeafBvh(const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
+  const KdTree& leaves = bvh.leaves;
   constexpr IntersectionMode kMode = IntersectionMode::kWatertight;
   Hit best;
   Ray ray = LoadRay(input);
   if (bvh.nodes.empty()) return best;
   RaySetup setup;  // the kd-tree's: the same sanitising, slack and watertight ray
-  if (!SanitizeAndSetUpRay(&ray, tree.bounds, &setup)) return best;
+  if (!SanitizeAndSetUpRay(&ray, leaves.bounds, &setup)) return best;
   best.t = ray.tmax;
   const float slack = setup.slack;
   const leaf_step::LeafRay<kMode> leaf_ray(ray, setup.wray, origin_tri);
   const BoxRay box_ray(ray);
-  const float* soa = tree.leaf_soa.data();
-  const float* soa_end = soa + tree.leaf_soa.size();
+  const float* soa = leaves.leaf_soa.data();
+  const float* soa_end = soa + leaves.leaf_soa.size();
   const LeafBvhNode* nodes = bvh.nodes.data();
   Entry stack[kBvhWidth * kMaxTraversalStack];
   int top = 0;
@@ -112,12 +113,12 @@ Hit TraceLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& input, uint3
 
 }  // namespace
 
-Hit IntersectLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray) {
-  return TraceLeafBvh<false>(tree, bvh, ray, kNoHit);
+Hit IntersectLeafBvh(const LeafBvh& bvh, const Ray& ray) {
+  return TraceLeafBvh<false>(bvh, ray, kNoHit);
 }
 
-bool OccludedLeafBvh(const KdTree& tree, const LeafBvh& bvh, const Ray& ray, uint32_t origin_tri) {
-  return TraceLeafBvh<true>(tree, bvh, ray, origin_tri).hit();
+bool OccludedLeafBvh(const LeafBvh& bvh, const Ray& ray, uint32_t origin_tri) {
+  return TraceLeafBvh<true>(bvh, ray, origin_tri).hit();
 }
 
 }  // namespace kdtree

@@ -31,7 +31,7 @@ uint32_t PacketsOf(uint32_t count) { return (count + kPacketLanes - 1) / kPacket
 
 class Builder {
  public:
-  Builder(const TriangleSoup& soup, const TriangleBvhOptions& options, TriangleBvh* out)
+  Builder(const TriangleSoup& soup, const TriangleBvhOptions& options, LeafBvh* out)
       : soup_(soup), options_(options), out_(out) {}
 
   void Build() {
@@ -46,7 +46,7 @@ class Builder {
     Split();
     out_->leaves.bounds = nodes_[0].box;
     WritePackets();
-    wide_collapse::Collapse(*this, 0, &out_->bvh);
+    wide_collapse::Collapse(*this, 0, out_);
   }
 
   // The hierarchy as wide_collapse::Collapse reads it.
@@ -197,7 +197,7 @@ class Builder {
 
   const TriangleSoup& soup_;
   const TriangleBvhOptions options_;
-  TriangleBvh* out_;
+  LeafBvh* out_;
   std::vector<uint32_t> order_;        // the soup's triangles (all kept)
   std::vector<AABB> boxes_;            // per triangle
   std::vector<Vec3> centroids_;        // per triangle: its box's centre
@@ -207,10 +207,10 @@ class Builder {
 
 }  // namespace
 
-absl::StatusOr<TriangleBvh> BuildTriangleBvh(const TriangleSoup& soup,
-                                             const TriangleBvhOptions& options) {
+absl::StatusOr<LeafBvh> BuildTriangleBvh(const TriangleSoup& soup,
+                                         const TriangleBvhOptions& options) {
   if (absl::Status s = CheckBuildInput(soup); !s.ok()) return s;
-  TriangleBvh bvh;
+  LeafBvh bvh;
   Builder(soup, options, &bvh).Build();
   return bvh;
 }

@@ -51,20 +51,10 @@ struct TriangleBvhOptions {
   float traversal_cost = 1.0f;  // a node step, in leaf-packet tests
 };
 
-struct TriangleBvh {
-  // What the leaf-BVH traversals read of a tree: `leaves.leaf_soa` holds
-  // each leaf's triangles in packets (leaf_layout.h), `leaves.bounds` the
-  // scene's box, `leaves.triangles` the soup's triangle count; its `nodes`
-  // are empty (there is no kd-tree).
-  KdTree leaves;
-  LeafBvh bvh;
-  size_t bytes() const { return bvh.bytes() + leaves.leaf_soa.size() * sizeof(float); }
-};
-
 // The hierarchy over `soup`'s triangles (an empty one for an empty soup).
 // Errors: builder.h's CheckBuildInput, as BuildKdTree's.
-absl::StatusOr<TriangleBvh> BuildTriangleBvh(const TriangleSoup& soup,
-                                             const TriangleBvhOptions& options = {});
+absl::StatusOr<LeafBvh> BuildTriangleBvh(const TriangleSoup& soup,
+                                         const TriangleBvhOptions& options = {});
 
 }  // namespace kdtree
 

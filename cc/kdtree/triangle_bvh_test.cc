@@ -69,16 +69,16 @@ TEST_P(TriangleBvhVsKd, SameAnswers) {
   const TriangleSoup soup = testing::NamedScene(GetParam());
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok()) << tree.status();
-  absl::StatusOr<TriangleBvh> built = BuildTriangleBvh(soup);
+  absl::StatusOr<LeafBvh> built = BuildTriangleBvh(soup);
   ASSERT_TRUE(built.ok()) << built.status();
-  const TriangleBvh& tb = *built;
-  ASSERT_FALSE(tb.bvh.nodes.empty());
+  const LeafBvh& tb = *built;
+  ASSERT_FALSE(tb.nodes.empty());
   std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
   for (const Ray& r : testing::GridAxisRays(3000, 9)) rays.push_back(r);
   for (const Ray& r : VertexAndEdgeRays(soup, 6000, 5)) rays.push_back(r);
   const testing::BvhMismatches m =
-      testing::CompareWithKdTree(soup, *tree, tb.leaves, tb.bvh, rays, 4);
+      testing::CompareWithKdTree(soup, *tree, tb, rays, 4);
   EXPECT_EQ(m.closest, 0);
   EXPECT_EQ(m.any, 0);
   EXPECT_EQ(m.shadow, 0);
@@ -93,14 +93,14 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TriangleBvhVsKd,
 // the slots' packet counts right.
 TEST(TriangleBvh, EachTriangleOnceInsideItsBox) {
   const TriangleSoup soup = testing::NamedScene("thin");
-  absl::StatusOr<TriangleBvh> built = BuildTriangleBvh(soup);
+  absl::StatusOr<LeafBvh> built = BuildTriangleBvh(soup);
   ASSERT_TRUE(built.ok()) << built.status();
-  const TriangleBvh& tb = *built;
+  const LeafBvh& tb = *built;
   EXPECT_EQ(tb.leaves.triangles, soup.size());
   EXPECT_TRUE(tb.leaves.nodes.empty());
   std::vector<int> seen(soup.size(), 0);
   int outside = 0, bad_counts = 0;
-  for (const LeafBvhNode& node : tb.bvh.nodes) {
+  for (const LeafBvhNode& node : tb.nodes) {
     for (int s = 0; s < kBvhWidth; ++s) {
       if (node.child[s] == LeafBvhNode::kNone || !(node.child[s] & LeafBvhNode::kLeafBit)) continue;
       const std::vector<uint32_t> ids = LeafIds(tb.leaves, node.child[s] & ~LeafBvhNode::kLeafBit);
@@ -125,7 +125,7 @@ TEST(TriangleBvh, RefusesNonFiniteVertices) {
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), INFINITY}) {
     TriangleSoup soup = testing::NamedScene("thin");
     soup.Add(Vec3(0, 0, 0), Vec3(bad, 0, 0), Vec3(0, 1, 0));
-    absl::StatusOr<TriangleBvh> built = BuildTriangleBvh(soup);
+    absl::StatusOr<LeafBvh> built = BuildTriangleBvh(soup);
     ASSERT_FALSE(built.ok());
     EXPECT_EQ(built.status().code(), absl::StatusCode::kInvalidArgument);
     EXPECT_NE(built.status().message().find("triangle 2000"), std::string::npos)
@@ -141,13 +141,13 @@ TEST(TriangleBvh, RefusesNonFiniteVertices) {
 TEST(TriangleBvh, TinySoups) {
   TriangleSoup one;
   one.Add(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
-  const TriangleBvh tb = *BuildTriangleBvh(one);
-  ASSERT_EQ(tb.bvh.nodes.size(), 1u);
-  const Hit h = IntersectLeafBvh(tb.leaves, tb.bvh, Ray{{0.2f, 0.2f, 1}, {0, 0, -1}});
+  const LeafBvh tb = *BuildTriangleBvh(one);
+  ASSERT_EQ(tb.nodes.size(), 1u);
+  const Hit h = IntersectLeafBvh(tb, Ray{{0.2f, 0.2f, 1}, {0, 0, -1}});
   EXPECT_EQ(h.tri, 0u);
-  const TriangleBvh none = *BuildTriangleBvh(TriangleSoup());
-  EXPECT_TRUE(none.bvh.nodes.empty());
-  EXPECT_FALSE(IntersectLeafBvh(none.leaves, none.bvh, Ray{{0, 0, 1}, {0, 0, -1}}).hit());
+  const LeafBvh none = *BuildTriangleBvh(TriangleSoup());
+  EXPECT_TRUE(none.nodes.empty());
+  EXPECT_FALSE(IntersectLeafBvh(none, Ray{{0, 0, 1}, {0, 0, -1}}).hit());
 }
 
 // Coordinates near the largest float, whose extents overflow a float: rays
@@ -159,15 +159,15 @@ TEST(TriangleBvh, HugeCoordinates) {
     const float x = (i % 2 ? big : -big) * (0.5f + 0.04f * static_cast<float>(i));
     soup.Add(Vec3(x, 0, 0), Vec3(x, 1, 0), Vec3(x, 0, 1));
   }
-  const TriangleBvh tb = *BuildTriangleBvh(soup);
-  ASSERT_FALSE(tb.bvh.nodes.empty());
+  const LeafBvh tb = *BuildTriangleBvh(soup);
+  ASSERT_FALSE(tb.nodes.empty());
   const BruteForce bf(soup);
   int bad = 0;
   for (int i = 0; i < 12; ++i) {
     const Vec3 target(soup.a(i).x, 0.25f, 0.25f);
     for (const Vec3& from : {Vec3(0, 0.25f, 0.25f), Vec3(target.x * 0.5f, 0.3f, 0.2f)}) {
       const Ray r{from, target - from};
-      bad += !testing::BitwiseSameHit(IntersectLeafBvh(tb.leaves, tb.bvh, r), bf.Intersect(r));
+      bad += !testing::BitwiseSameHit(IntersectLeafBvh(tb, r), bf.Intersect(r));
     }
   }
   EXPECT_EQ(bad, 0);

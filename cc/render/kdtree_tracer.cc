@@ -41,10 +41,10 @@ void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin
 absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> TriangleBvhTracer::Build(
     const TriangleSoup& soup) {
   const absl::Time start = absl::Now();
-  absl::StatusOr<TriangleBvh> bvh = BuildTriangleBvh(soup);
+  absl::StatusOr<LeafBvh> bvh = BuildTriangleBvh(soup);
   if (!bvh.ok()) return bvh.status();
   auto tracer =
-      std::make_unique<TriangleBvhTracer>(std::make_shared<const TriangleBvh>(*std::move(bvh)));
+      std::make_unique<TriangleBvhTracer>(std::make_shared<const LeafBvh>(*std::move(bvh)));
   tracer->build_seconds_ = absl::ToDoubleSeconds(absl::Now() - start);
   return tracer;
 }

@@ -63,25 +63,24 @@ class KdTreeTracer : public Tracer {
 class KdTreeBvhTracer : public KdTreeTracer {
  public:
   explicit KdTreeBvhTracer(const KdTree& tree)
-      : KdTreeTracer(tree), tree_(tree), bvh_(BuildLeafBvh(tree)) {}
+      : KdTreeTracer(tree), bvh_(BuildLeafBvh(tree)) {}
   std::string name() const override { return "kdtree_bvh"; }
   using Tracer::Occluded;
-  Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(tree_, bvh_, ray); }
+  Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(bvh_, ray); }
   bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
-    return OccludedLeafBvh(tree_, bvh_, ray, origin_tri);
+    return OccludedLeafBvh(bvh_, ray, origin_tri);
   }
   // Packets through the same BVH (leaf_bvh_packet_kernel.cc).
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
-    IntersectPacketLeafBvh(tree_, bvh_, rays, n, hits, closest_counters());
+    IntersectPacketLeafBvh(bvh_, rays, n, hits, closest_counters());
   }
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override {
-    OccludedPacketLeafBvh(tree_, bvh_, rays, n, origin_tris, occluded, any_counters());
+    OccludedPacketLeafBvh(bvh_, rays, n, origin_tris, occluded, any_counters());
   }
   const LeafBvh& bvh() const { return bvh_; }
 
  private:
-  const KdTree& tree_;
   LeafBvh bvh_;
 };
 
@@ -93,35 +92,35 @@ class KdTreeBvhTracer : public KdTreeTracer {
 // work traces the timed tracer's).
 class TriangleBvhTracer : public Tracer {
  public:
-  explicit TriangleBvhTracer(std::shared_ptr<const TriangleBvh> bvh) : bvh_(std::move(bvh)) {}
+  explicit TriangleBvhTracer(std::shared_ptr<const LeafBvh> bvh) : bvh_(std::move(bvh)) {}
   // Builds the hierarchy over `soup` (BuildTriangleBvh's errors) and its
   // tracer, timing the build (build_seconds).
   static absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> Build(const TriangleSoup& soup);
   std::string name() const override { return "triangle_bvh"; }
   using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override {
-    return IntersectLeafBvh(bvh_->leaves, bvh_->bvh, ray);
+    return IntersectLeafBvh(*bvh_, ray);
   }
   bool Occluded(const Ray& ray, uint32_t origin_tri) const override {
-    return OccludedLeafBvh(bvh_->leaves, bvh_->bvh, ray, origin_tri);
+    return OccludedLeafBvh(*bvh_, ray, origin_tri);
   }
   void IntersectPacket(const Ray* rays, int n, Hit* hits) const override {
-    IntersectPacketLeafBvh(bvh_->leaves, bvh_->bvh, rays, n, hits, closest_);
+    IntersectPacketLeafBvh(*bvh_, rays, n, hits, closest_);
   }
   void OccludedPacket(const Ray* rays, int n, const uint32_t* origin_tris,
                       bool* occluded) const override {
-    OccludedPacketLeafBvh(bvh_->leaves, bvh_->bvh, rays, n, origin_tris, occluded, any_);
+    OccludedPacketLeafBvh(*bvh_, rays, n, origin_tris, occluded, any_);
   }
   // As KdTreeTracer::CountPackets (render with one thread).
   void CountPackets(PacketCounters* closest, PacketCounters* any) {
     closest_ = closest;
     any_ = any;
   }
-  const std::shared_ptr<const TriangleBvh>& bvh() const { return bvh_; }
+  const std::shared_ptr<const LeafBvh>& bvh() const { return bvh_; }
   double build_seconds() const { return build_seconds_; }  // Build's; 0 otherwise
 
  private:
-  std::shared_ptr<const TriangleBvh> bvh_;
+  std::shared_ptr<const LeafBvh> bvh_;
   double build_seconds_ = 0;
   PacketCounters* closest_ = nullptr;
   PacketCounters* any_ = nullptr;

@@ -78,23 +78,23 @@ bool SameHit(const Hit& a, const Hit& b) {
   return !a.hit() || (a.tri == b.tri && a.t == b.t && a.u == b.u && a.v == b.v);
 }
 
-// The leaf-BVH queries (leaf_bvh.h) through (`leaves`, `bvh`), closest and
+// The leaf-BVH queries (leaf_bvh.h) through `bvh`, closest and
 // any hit, single rays and packets of kRayPacketSize consecutive rays: marks
 // in *bad and *bad_any the rays whose answers differ from `reference`.
-void CheckLeafBvh(const KdTree& leaves, const LeafBvh& bvh, const std::vector<Ray>& rays,
+void CheckLeafBvh(const LeafBvh& bvh, const std::vector<Ray>& rays,
                   const std::vector<Hit>& reference, std::vector<char>* bad,
                   std::vector<char>* bad_any) {
   ParallelFor(rays.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      (*bad)[i] |= !SameHit(IntersectLeafBvh(leaves, bvh, rays[i]), reference[i]);
-      (*bad_any)[i] |= OccludedLeafBvh(leaves, bvh, rays[i]) != reference[i].hit();
+      (*bad)[i] |= !SameHit(IntersectLeafBvh(bvh, rays[i]), reference[i]);
+      (*bad_any)[i] |= OccludedLeafBvh(bvh, rays[i]) != reference[i].hit();
     }
     for (size_t i = begin; i < end; i += kRayPacketSize) {
       const int n = static_cast<int>(std::min<size_t>(kRayPacketSize, end - i));
       Hit hits[kRayPacketSize];
       bool occluded[kRayPacketSize];
-      IntersectPacketLeafBvh(leaves, bvh, &rays[i], n, hits);
-      OccludedPacketLeafBvh(leaves, bvh, &rays[i], n, nullptr, occluded);
+      IntersectPacketLeafBvh(bvh, &rays[i], n, hits);
+      OccludedPacketLeafBvh(bvh, &rays[i], n, nullptr, occluded);
       for (int l = 0; l < n; ++l) {
         (*bad)[i + l] |= !SameHit(hits[l], reference[i + l]);
         (*bad_any)[i + l] |= occluded[l] != reference[i + l].hit();
@@ -152,7 +152,7 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
   });
   // The BVH over the tree's leaves (leaf_bvh.h), watertight test only.
   if (mode == IntersectionMode::kWatertight) {
-    CheckLeafBvh(tree, BuildLeafBvh(tree), rays, reference, &bad, &bad_any);
+    CheckLeafBvh(BuildLeafBvh(tree), rays, reference, &bad, &bad_any);
   }
   Tally(reference, bad, bad_any, &r);
   return r;
@@ -163,14 +163,14 @@ CheckResult CheckTriangleBvh(const TriangleSoup& soup, const std::vector<Ray>& r
   CheckResult r;
   r.preset = kTriangleBvhRow;
   r.rays = rays.size();
-  const absl::StatusOr<TriangleBvh> tb = BuildTriangleBvh(soup);
+  const absl::StatusOr<LeafBvh> tb = BuildTriangleBvh(soup);
   if (!tb.ok()) {
     std::printf("%s: build failed: %s\n", kTriangleBvhRow, tb.status().ToString().c_str());
     r.mismatches = rays.size();  // a failed build fails the check
     return r;
   }
   std::vector<char> bad(rays.size(), 0), bad_any(rays.size(), 0);
-  CheckLeafBvh(tb->leaves, tb->bvh, rays, reference, &bad, &bad_any);
+  CheckLeafBvh(*tb, rays, reference, &bad, &bad_any);
   Tally(reference, bad, bad_any, &r);
   return r;
 }

@@ -360,8 +360,7 @@ absl::Status Run() {
   rec["image"] = png.empty() ? Json() : Json(png);
   rec["image_fnv64"] = absl::StrFormat("%016x", Fnv64(r.rgb));
   AddComparisons(lanes, choice.fast, f.use_embree ? &f.quality : nullptr, f.embree_timed, b,
-                 untimed->disagreements, pixels, lane_set->bvh_build_s,
-                 lane_set->bvh_bytes, &rec);
+                 untimed->disagreements, pixels, lane_set->bvh_built, &rec);
   AddRobustEmbree(lanes, untimed->robust_disagreements, &rec);
   AddTriangleBvh(lanes, lane_set->triangle_bvh_build_s, lane_set->triangle_bvh_bytes, &rec);
   AddPassComparisons(lanes, &rec);

@@ -27,8 +27,9 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     lanes.push_back({kSingleOriginLane, &kd, so});
     const absl::Time start = absl::Now();
     set.bvh = std::make_unique<KdTreeBvhTracer>(tree);
-    set.bvh_build_s = absl::ToDoubleSeconds(absl::Now() - start);
-    set.bvh_bytes = set.bvh->bvh().bytes();
+    set.bvh_built.build_s = absl::ToDoubleSeconds(absl::Now() - start);
+    set.bvh_built.node_bytes = set.bvh->bvh().node_bytes();
+    set.bvh_built.packet_bytes = set.bvh->bvh().packet_bytes();
     lanes.push_back({kSingleBvhLane, set.bvh.get(), so});
     lanes.push_back({kPacketsBvhLane, set.bvh.get(), fo});
   }

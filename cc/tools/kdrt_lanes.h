@@ -16,6 +16,7 @@
 #include "cc/render/renderer.h"
 #include "cc/render/replay_tracer.h"
 #include "cc/render/tracer.h"
+#include "cc/tools/kdrt_record.h"
 #include "cc/tools/timed_render.h"
 
 namespace kdtree {
@@ -39,8 +40,7 @@ struct LaneSet {
   // With `fast`: the tree's leaves under a BVH (cc/kdtree/leaf_bvh.h), the
   // third single-ray mode, and the seconds its build took.
   std::unique_ptr<KdTreeBvhTracer> bvh;
-  double bvh_build_s = 0;
-  size_t bvh_bytes = 0;  // its nodes (LeafBvh::bytes), kept after it is freed
+  BuiltBvh bvh_built;  // kept after it is freed
   // With `fast` and `triangle_bvh`: the same kernels over a BVH of whole
   // triangles (cc/kdtree/triangle_bvh.h), its build's seconds and its bytes.
   std::unique_ptr<TriangleBvhTracer> triangle_bvh;

@@ -160,7 +160,7 @@ Json LaneTimes(const Lane& l) {
 
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality, bool embree_timed,
                     const TimedBuilds& b, const Json& disagreements, double pixels,
-                    double bvh_build_s, size_t bvh_bytes, Json* rec) {
+                    const BuiltBvh& bvh, Json* rec) {
   Json& out = *rec;
   out["embree"] = nullptr;
   out["disagreements"] = quality != nullptr ? disagreements : Json();
@@ -175,13 +175,15 @@ void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuali
     }
     if (const Lane* sb = FindLane(lanes, kSingleBvhLane)) {
       out["fast_render"]["single_bvh"] = LaneTimes(*sb);
-      out["fast_render"]["single_bvh"]["build_s"] = bvh_build_s;
-      out["fast_render"]["single_bvh"]["bytes"] = bvh_bytes;
+      out["fast_render"]["single_bvh"]["build_s"] = bvh.build_s;
+      out["fast_render"]["single_bvh"]["bytes"] = bvh.node_bytes;
+      out["fast_render"]["single_bvh"]["packet_bytes"] = bvh.packet_bytes;
     }
     if (const Lane* pb = FindLane(lanes, kPacketsBvhLane)) {
       out["fast_render"]["packets_bvh"] = LaneTimes(*pb);
-      out["fast_render"]["packets_bvh"]["build_s"] = bvh_build_s;
-      out["fast_render"]["packets_bvh"]["bytes"] = bvh_bytes;
+      out["fast_render"]["packets_bvh"]["build_s"] = bvh.build_s;
+      out["fast_render"]["packets_bvh"]["bytes"] = bvh.node_bytes;
+      out["fast_render"]["packets_bvh"]["packet_bytes"] = bvh.packet_bytes;
     }
   }
   if (quality == nullptr) return;

@@ -72,19 +72,26 @@ inline constexpr char kEmbreeRobustPacketsLane[] = "embree robust packets";
 inline constexpr char kReplayLane[] = "replay";
 inline constexpr char kReplayPacketsLane[] = "replay packets";
 
+// The BVH over the kd-tree's leaves (cc/kdtree/leaf_bvh.h) that kdrt's
+// kSingleBvhLane and kPacketsBvhLane trace: its build's seconds (from the
+// finished tree) and its bytes, kept after it is freed.
+struct BuiltBvh {
+  double build_s = 0;
+  size_t node_bytes = 0;    // LeafBvh::node_bytes
+  size_t packet_bytes = 0;  // LeafBvh::packet_bytes: its own leaf packets
+};
+
 // Adds "embree", "disagreements", "perf_ratio_kd_over_embree" and
 // "fast_render": lanes are the timed lanes (the kd-tree's first; with `fast`
 // kFastLane and kSingleOriginLane; Embree's when `embree_timed`); `quality`
 // is null without Embree. Single rays against single rays take per round the
 // fastest of our single-ray lanes (the first, kSingleOriginLane and
-// kSingleBvhLane, whose build took bvh_build_s and whose nodes hold
-// bvh_bytes), best
-// mode against best mode the fastest of ours (the fast mode and
-// kPacketsBvhLane too) over the faster of Embree's two.
+// kSingleBvhLane, whose BVH is `bvh`), best mode against best mode the
+// fastest of ours (the fast mode and kPacketsBvhLane too) over the faster of
+// Embree's two.
 void AddComparisons(const std::vector<Lane>& lanes, bool fast, const EmbreeQuality* quality,
                     bool embree_timed, const TimedBuilds& b, const nlohmann::ordered_json& disagreements,
-                    double pixels, double bvh_build_s, size_t bvh_bytes,
-                    nlohmann::ordered_json* rec);
+                    double pixels, const BuiltBvh& bvh, nlohmann::ordered_json* rec);
 
 // With the lanes kEmbreeRobustLane and kEmbreeRobustPacketsLane (Embree built
 // with RTC_SCENE_FLAG_ROBUST, timed in the same rounds): adds

@@ -143,6 +143,8 @@ check(len(pb["T_R_runs"]) == 2 and pb["T_R"] > 0 and pb["build_s"] == sb["build_
       "packets through the BVH timed in the same two rounds")
 check(sb["bytes"] > 0 and sb["bytes"] % 256 == 0 and pb["bytes"] == sb["bytes"],
       "the BVH's nodes' bytes recorded")
+check(sb["packet_bytes"] >= 160 and sb["packet_bytes"] % 160 == 0
+      and pb["packet_bytes"] == sb["packet_bytes"], "the BVH's own leaf packets' bytes recorded")
 check(f["single_paired_ratio_runs"] == [e / min(k, s, b) for e, k, s, b in
       zip(fe["embree"]["T_R_runs"], fe["T_R_runs"], so["T_R_runs"], sb["T_R_runs"])],
       "single rays: Embree's over the fastest of ours, paired per round")
