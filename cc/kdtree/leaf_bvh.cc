@@ -54,6 +54,46 @@ void LeafLanes(const KdTree& tree, uint32_t first, std::vector<LaneRef>* out) {
   }
 }
 
+// A kd leaf's groups: per (axis, coordinate), the triangles flat on that
+// plane, in the order of the keys, then the triangles flat on no axis; each
+// group's triangles in the leaf's order.
+class Grouper {
+ public:
+  // Calls f(const std::vector<LaneRef>&) on each group of the kd leaf whose
+  // first packet is `first`.
+  template <class F>
+  void ForEachGroup(const KdTree& tree, uint32_t first, F f) {
+    lanes_.clear();
+    LeafLanes(tree, first, &lanes_);
+    keyed_.clear();
+    for (size_t i = 0; i < lanes_.size(); ++i) {
+      const int axis = FlatAxis(lanes_[i]);
+      Vec3 a, b, c;
+      PacketTriangle(lanes_[i].packet, lanes_[i].lane, &a, &b, &c);
+      keyed_.push_back({axis < 0 ? 3 : axis, axis < 0 ? 0.0f : a[axis], i});  // others: axis 3
+    }
+    std::sort(keyed_.begin(), keyed_.end());
+    for (size_t i = 0; i < keyed_.size();) {
+      group_.clear();
+      size_t j = i;
+      for (; j < keyed_.size() && std::get<0>(keyed_[j]) == std::get<0>(keyed_[i]) &&
+             std::get<1>(keyed_[j]) == std::get<1>(keyed_[i]);
+           ++j) {
+        group_.push_back(lanes_[std::get<2>(keyed_[j])]);
+      }
+      f(group_);
+      i = j;
+    }
+  }
+
+ private:
+  // The leaf's triangles, their keys (axis, coordinate, index in lanes_),
+  // one group's triangles.
+  std::vector<LaneRef> lanes_;
+  std::vector<std::tuple<int, float, size_t>> keyed_;
+  std::vector<LaneRef> group_;
+};
+
 class Builder {
  public:
   Builder(const KdTree& tree, LeafBvh* out) : tree_(tree), out_(out) {}
@@ -112,42 +152,22 @@ class Builder {
     return Join(a, Node(n.index(), right));
   }
 
-  // A kd leaf's groups: per (axis, coordinate) the triangles flat on that
-  // plane, then the others; each a BVH leaf, joined in that order.
+  // A kd leaf's groups (Grouper), each a BVH leaf, joined in their order.
   int64_t Leaf(uint32_t first, const AABB& cell) {
-    lanes_.clear();
-    LeafLanes(tree_, first, &lanes_);
-    keyed_.clear();
-    for (const LaneRef& t : lanes_) {
-      const int axis = FlatAxis(t);
-      Vec3 a, b, c;
-      PacketTriangle(t.packet, t.lane, &a, &b, &c);
-      // The others sort last (axis 3), each group in the leaf's order.
-      keyed_.push_back({axis < 0 ? 3 : axis, axis < 0 ? 0.0f : a[axis], &t - lanes_.data()});
-    }
-    std::sort(keyed_.begin(), keyed_.end());
     int64_t node = -1;
-    for (size_t i = 0; i < keyed_.size();) {
-      size_t j = i;
-      group_.clear();
-      for (; j < keyed_.size() && std::get<0>(keyed_[j]) == std::get<0>(keyed_[i]) &&
-             std::get<1>(keyed_[j]) == std::get<1>(keyed_[i]);
-           ++j) {
-        group_.push_back(lanes_[std::get<2>(keyed_[j])]);
-      }
-      node = Join(node, Group(cell));
-      i = j;
-    }
+    grouper_.ForEachGroup(tree_, first, [&](const std::vector<LaneRef>& group) {
+      node = Join(node, Group(group, cell));
+    });
     return node;
   }
 
-  // group_ as a BVH leaf, its triangles kept in refs_ and its box the union
-  // of their boxes clipped to `cell`; -1 when that is empty (no triangle of
-  // the group meets the cell: none holds a hit there).
-  int64_t Group(const AABB& cell) {
+  // `group` as a BVH leaf, its triangles kept in refs_ and its box the
+  // union of their boxes clipped to `cell`; -1 when that is empty (no
+  // triangle of the group meets the cell: none holds a hit there).
+  int64_t Group(const std::vector<LaneRef>& group, const AABB& cell) {
     V g;
     g.leaf = true;
-    for (const LaneRef& t : group_) {
+    for (const LaneRef& t : group) {
       Vec3 v[3];
       PacketTriangle(t.packet, t.lane, &v[0], &v[1], &v[2]);
       AABB b;
@@ -158,8 +178,8 @@ class Builder {
     }
     if (!g.box.Valid()) return -1;
     g.begin = refs_.size();
-    g.count = group_.size();
-    refs_.insert(refs_.end(), group_.begin(), group_.end());
+    g.count = group.size();
+    refs_.insert(refs_.end(), group.begin(), group.end());
     v_.push_back(g);
     return static_cast<int64_t>(v_.size() - 1);
   }
@@ -206,14 +226,23 @@ class Builder {
   LeafBvh* out_;
   std::vector<V> v_;
   std::vector<LaneRef> refs_;  // the BVH leaves' triangles, leaf after leaf
-  // Scratch of Leaf and Group: the leaf's triangles, their group keys
-  // (axis, coordinate, index in lanes_), one group's triangles.
-  std::vector<LaneRef> lanes_;
-  std::vector<std::tuple<int, float, size_t>> keyed_;
-  std::vector<LaneRef> group_;
+  Grouper grouper_;
 };
 
 }  // namespace
+
+uint64_t LeafBvhPacketBytes(const KdTree& tree) {
+  if (tree.nodes.empty() || !tree.bounds.Valid() || tree.leaf_soa.empty()) return 0;
+  uint64_t packets = 0;
+  Grouper grouper;
+  for (const KdNode& n : tree.nodes) {
+    if (!n.is_leaf() || n.index() == kEmptyLeaf) continue;
+    grouper.ForEachGroup(tree, n.index(), [&](const std::vector<LaneRef>& group) {
+      packets += (group.size() + kPacketLanes - 1) / kPacketLanes;
+    });
+  }
+  return packets * kPacketFloats * sizeof(float);
+}
 
 LeafBvh BuildLeafBvh(const KdTree& tree) {
   LeafBvh bvh;

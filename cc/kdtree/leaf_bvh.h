@@ -202,6 +202,20 @@
 //    bunny, 4.5-4.6 % on hairball-1m and courtyard-1m and 1.1-2.9 % on
 //    lost-empire, morse-trees and city2; a whole triangle step was a repeat in
 //    0.5-2.8 % of the steps: too few to pay for a lookup at every step.
+//  - With the flat groups (render_bench --envs, the variant as a second tree,
+//    7 paired rounds, one process; city2, bunny, lost-empire, morse-trees,
+//    hairball-1m, courtyard-1m, morse-indoor, dragon; 2026-12-07): a
+//    hierarchy built anew over the groups by the binned SAH (Wald, RT 2007;
+//    as triangle_bvh.h's, a group's cost its packets) instead of the kd
+//    hierarchy collapsed, with leaves of one group: renders 0.981-1.030 times
+//    as long (lost-empire 0.981, hairball-1m 1.030), and with groups merged
+//    into leaves of up to 16 triangles where the SAH prefers it: 0.983-1.021
+//    and 0.982-1.034 in two processes; the same tree twice 0.986-1.014. The
+//    kd hierarchy is as good a hierarchy over these leaves as the SAH's.
+//    And sah-packet's K_T (45) lowered again, now that a leaf's flat
+//    triangles are leaves of their own: K_T 20 0.995-1.053, K_T 30
+//    0.970-1.026 (bunny 0.970, one process), the same tree twice
+//    0.986-1.036.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
@@ -252,6 +266,11 @@ struct LeafBvh {
 // groups and the rest (above), with their packets copied from the tree's:
 // it does not refer to `tree`.
 LeafBvh BuildLeafBvh(const KdTree& tree);
+
+// At least the bytes of BuildLeafBvh(tree)'s packets (LeafBvh::packet_bytes;
+// equal unless a group meets its cell nowhere), counted without building it:
+// for a memory budget.
+uint64_t LeafBvhPacketBytes(const KdTree& tree);
 
 // The kd-tree's queries (traversal.h, watertight test), through `bvh`:
 // Intersect's closest hit, bit for bit, and whether any triangle but

@@ -260,6 +260,12 @@ TEST(LeafBvh, FlatGroups) {
   }
   EXPECT_EQ(mixed, 0);
   EXPECT_GT(flat, leaves / 2);  // the voxels' faces are all flat
+  // Its packets' bytes, counted without the build (for kdrt's budget).
+  EXPECT_EQ(LeafBvhPacketBytes(*tree), bvh.packet_bytes());
+  const TriangleSoup sphere = testing::NamedScene("sphere");
+  absl::StatusOr<KdTree> round = BuildKdTree(sphere, *Preset("sah-packet"));
+  ASSERT_TRUE(round.ok());
+  EXPECT_EQ(LeafBvhPacketBytes(*round), BuildLeafBvh(*round).packet_bytes());
 }
 
 TEST(LeafBvh, EmptyTreeAndMisses) {

@@ -53,6 +53,7 @@
 #include "cc/render/renderer.h"
 #include "cc/render/view.h"
 #include "cc/tools/kdrt_config.h"
+#include "cc/kdtree/leaf_layout.h"
 #include "cc/tools/kdrt_lanes.h"
 #include "cc/tools/kdrt_limits.h"
 #include "cc/tools/kdrt_passes.h"
@@ -306,6 +307,7 @@ absl::Status Run() {
   choice.embree_robust = absl::GetFlag(FLAGS_embree_robust);
   choice.triangle_bvh = absl::GetFlag(FLAGS_triangle_bvh);
   choice.render = ropt;
+  choice.bvh_budget = *tree_budget > TreeBytes(tree) ? *tree_budget - TreeBytes(tree) : 0;
   absl::StatusOr<LaneSet> lane_set = MakeLanes(*soup, tree, kd, b.embree.get(), f.eo, choice);
   if (!lane_set.ok()) return lane_set.status();
   std::vector<Lane>& lanes = lane_set->lanes;

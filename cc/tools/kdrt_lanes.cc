@@ -5,6 +5,8 @@
 
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
+#include "cc/base/memory_budget.h"
+#include "cc/kdtree/leaf_bvh.h"
 
 #include "cc/tools/kdrt_record.h"
 
@@ -25,6 +27,12 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     RenderOptions so = ropt;
     so.skip_origin = true;
     lanes.push_back({kSingleOriginLane, &kd, so});
+    if (absl::Status st = CheckMemoryBudget(
+            LeafBvhPacketBytes(tree), choice.bvh_budget,
+            "the BVH over the tree's leaves (its own leaf packets)", "kdrt --memory_budget_gb");
+        !st.ok()) {
+      return st;
+    }
     const absl::Time start = absl::Now();
     set.bvh = std::make_unique<KdTreeBvhTracer>(tree);
     set.bvh_built.build_s = absl::ToDoubleSeconds(absl::Now() - start);

@@ -5,6 +5,7 @@
 #define KDTREE_CC_TOOLS_KDRT_LANES_H_
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct LaneChoice {
   bool embree_timed = false;   // Embree (`embree`) timed in the same rounds
   bool embree_robust = false;  // also Embree built robust (with fast and embree_timed)
   bool triangle_bvh = false;   // also the baseline over whole triangles (with fast)
+  // With fast: the bytes the BVH over the tree's leaves may hold (its own
+  // leaf packets: cc/kdtree/leaf_bvh.h), what the memory budget leaves
+  // after the renders and the tree.
+  uint64_t bvh_budget = ~uint64_t{0};
   RenderOptions render;        // the kd-tree's options (threads, shadow rays)
 };
 
