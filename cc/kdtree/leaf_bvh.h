@@ -210,7 +210,7 @@
 //    hierarchy collapsed, with leaves of one group: renders 0.981-1.030 times
 //    as long (lost-empire 0.981, hairball-1m 1.030), and with groups merged
 //    into leaves of up to 16 triangles where the SAH prefers it: 0.983-1.021
-//    and 0.982-1.034 in two processes; the same tree twice 0.986-1.014. The
+//    and 0.982-1.034 in two processes; the same tree twice 0.987-1.009. The
 //    kd hierarchy is as good a hierarchy over these leaves as the SAH's.
 //    And sah-packet's K_T (45) lowered again, now that a leaf's flat
 //    triangles are leaves of their own: K_T 20 0.995-1.053, K_T 30
