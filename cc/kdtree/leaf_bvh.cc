@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "cc/geometry/aabb.h"
@@ -28,15 +29,16 @@ struct LaneRef {
   uint32_t id;
 };
 
-// The axis (0, 1, 2) on which the three vertices of `t` share their
-// coordinate, the lowest such; -1 when there is none.
-int FlatAxis(const LaneRef& t) {
+// The group key of `t`: the lowest axis (0, 1, 2) on which its three
+// vertices share their coordinate, and that coordinate; (3, 0) when there is
+// no such axis, which sorts after every plane.
+std::pair<int, float> FlatKey(const LaneRef& t) {
   Vec3 v[3];
   PacketTriangle(t.packet, t.lane, &v[0], &v[1], &v[2]);
   for (int k = 0; k < 3; ++k) {
-    if (v[0][k] == v[1][k] && v[1][k] == v[2][k]) return k;
+    if (v[0][k] == v[1][k] && v[1][k] == v[2][k]) return {k, v[0][k]};
   }
-  return -1;
+  return {3, 0.0f};
 }
 
 // The triangles of the kd leaf whose first packet is `first`, in packet order.
@@ -65,12 +67,19 @@ class Grouper {
   void ForEachGroup(const KdTree& tree, uint32_t first, F f) {
     lanes_.clear();
     LeafLanes(tree, first, &lanes_);
+    if (lanes_.empty()) return;
     keyed_.clear();
     for (size_t i = 0; i < lanes_.size(); ++i) {
-      const int axis = FlatAxis(lanes_[i]);
-      Vec3 a, b, c;
-      PacketTriangle(lanes_[i].packet, lanes_[i].lane, &a, &b, &c);
-      keyed_.push_back({axis < 0 ? 3 : axis, axis < 0 ? 0.0f : a[axis], i});  // others: axis 3
+      const std::pair<int, float> key = FlatKey(lanes_[i]);
+      keyed_.push_back({key.first, key.second, i});
+    }
+    // A leaf of one key (most leaves of most scenes) is sorted already and
+    // one group, in the leaf's order.
+    if (std::get<0>(keyed_.front()) == std::get<0>(keyed_.back()) &&
+        std::get<1>(keyed_.front()) == std::get<1>(keyed_.back()) &&
+        std::is_sorted(keyed_.begin(), keyed_.end())) {
+      f(lanes_);
+      return;
     }
     std::sort(keyed_.begin(), keyed_.end());
     for (size_t i = 0; i < keyed_.size();) {
@@ -102,10 +111,21 @@ class Builder {
     out_->leaves.bounds = tree_.bounds;
     out_->leaves.triangles = tree_.triangles;
     out_->leaves.config = tree_.config;
+    // One allocation for the packets: as many as the groups need (fewer
+    // when a group is dropped), written as the groups are made.
+    const uint64_t packets = LeafBvhPacketBytes(tree_) / (kPacketFloats * sizeof(float));
+    // A child slot holds kLeafBit | the first packet. Unreachable within
+    // the build's memory budget (2^31 packets are 320 GiB), but never
+    // silently wrong.
+    if (packets >= LeafBvhNode::kLeafBit) {
+      std::fprintf(stderr, "BuildLeafBvh: %llu leaf packets, more than a node can address\n",
+                   static_cast<unsigned long long>(packets));
+      std::abort();
+    }
+    out_->leaves.leaf_soa.resize(packets * kPacketFloats);  // every float written by Group
     const int64_t root = Node(0, tree_.bounds);
-    if (root < 0) return;
-    WritePackets();
-    wide_collapse::Collapse(*this, static_cast<uint32_t>(root), out_);
+    out_->leaves.leaf_soa.resize(static_cast<size_t>(written_) * kPacketFloats);
+    if (root >= 0) wide_collapse::Collapse(*this, static_cast<uint32_t>(root), out_);
   }
 
   // The binary hierarchy as wide_collapse::Collapse reads it.
@@ -122,8 +142,7 @@ class Builder {
   struct V {
     AABB box;
     bool leaf = false;
-    size_t begin = 0, count = 0;      // a leaf's triangles in refs_
-    uint32_t first = 0, packets = 0;  // its packets in out_->leaves.leaf_soa
+    uint32_t first = 0, packets = 0;  // a leaf's packets in out_->leaves.leaf_soa
     uint32_t kid[2] = {0, 0};         // an inner node's children in v_
   };
 
@@ -161,9 +180,9 @@ class Builder {
     return node;
   }
 
-  // `group` as a BVH leaf, its triangles kept in refs_ and its box the
-  // union of their boxes clipped to `cell`; -1 when that is empty (no
-  // triangle of the group meets the cell: none holds a hit there).
+  // `group` as a BVH leaf, its packets written after the last group's, its
+  // box the union of its triangles' boxes clipped to `cell`; -1 when that is
+  // empty (no triangle of the group meets the cell: none holds a hit there).
   int64_t Group(const std::vector<LaneRef>& group, const AABB& cell) {
     V g;
     g.leaf = true;
@@ -177,55 +196,32 @@ class Builder {
       if (b.Valid()) g.box.Extend(b);
     }
     if (!g.box.Valid()) return -1;
-    g.begin = refs_.size();
-    g.count = group.size();
-    refs_.insert(refs_.end(), group.begin(), group.end());
+    g.first = written_;
+    g.packets = static_cast<uint32_t>((group.size() + kPacketLanes - 1) / kPacketLanes);
+    written_ += g.packets;
+    float* out = out_->leaves.leaf_soa.data() + static_cast<size_t>(g.first) * kPacketFloats;
+    for (size_t j = 0; j < static_cast<size_t>(g.packets) * kPacketLanes; ++j) {
+      float* q = out + (j / kPacketLanes) * kPacketFloats;
+      const int l = static_cast<int>(j % kPacketLanes);
+      uint32_t id = kPadLane;  // and zero vertices
+      if (j < group.size()) {
+        const LaneRef& t = group[j];
+        for (int w = 0; w < 9; ++w) q[w * kPacketLanes + l] = t.packet[w * kPacketLanes + t.lane];
+        id = t.id;
+      } else {
+        for (int w = 0; w < 9; ++w) q[w * kPacketLanes + l] = 0.0f;
+      }
+      if (l == 0 && j / kPacketLanes + 1 == g.packets) id |= kLastPacket;
+      std::memcpy(q + kPacketIds + l, &id, sizeof(id));
+    }
     v_.push_back(g);
     return static_cast<int64_t>(v_.size() - 1);
-  }
-
-  // Each BVH leaf's packets, in the order the leaves were made (the kd
-  // leaves' depth-first order), into one allocation.
-  void WritePackets() {
-    uint64_t packets = 0;
-    for (V& g : v_) {
-      if (!g.leaf) continue;
-      g.first = static_cast<uint32_t>(packets);
-      g.packets = static_cast<uint32_t>((g.count + kPacketLanes - 1) / kPacketLanes);
-      packets += g.packets;
-    }
-    // A child slot holds kLeafBit | the first packet. Unreachable within
-    // the build's memory budget (2^31 packets are 320 GiB), but never
-    // silently wrong.
-    if (packets >= LeafBvhNode::kLeafBit) {
-      std::fprintf(stderr, "BuildLeafBvh: %llu leaf packets, more than a node can address\n",
-                   static_cast<unsigned long long>(packets));
-      std::abort();
-    }
-    HugeBuffer<float>& soa = out_->leaves.leaf_soa;
-    soa.assign(static_cast<size_t>(packets) * kPacketFloats, 0.0f);
-    for (const V& g : v_) {
-      if (!g.leaf) continue;
-      float* out = soa.data() + static_cast<size_t>(g.first) * kPacketFloats;
-      for (size_t j = 0; j < static_cast<size_t>(g.packets) * kPacketLanes; ++j) {
-        float* q = out + (j / kPacketLanes) * kPacketFloats;
-        const int l = static_cast<int>(j % kPacketLanes);
-        uint32_t id = kPadLane;  // its vertices stay zero
-        if (j < g.count) {
-          const LaneRef& t = refs_[g.begin + j];
-          for (int w = 0; w < 9; ++w) q[w * kPacketLanes + l] = t.packet[w * kPacketLanes + t.lane];
-          id = t.id;
-        }
-        if (l == 0 && j / kPacketLanes + 1 == g.packets) id |= kLastPacket;
-        std::memcpy(q + kPacketIds + l, &id, sizeof(id));
-      }
-    }
   }
 
   const KdTree& tree_;
   LeafBvh* out_;
   std::vector<V> v_;
-  std::vector<LaneRef> refs_;  // the BVH leaves' triangles, leaf after leaf
+  uint32_t written_ = 0;  // packets written
   Grouper grouper_;
 };
 
