@@ -46,18 +46,28 @@
 // builders keep a triangle in every leaf whose closed cell its surface meets,
 // which the kd-tree's own traversal relies on), and the box of T's group in
 // that leaf contains T's part in that cell, since a box of T clipped to the
-// cell contains it (min and max are exact). The box test is conservative (Ize, "Robust BVH Ray
-// Traversal", JCGT 2(2), 2013: the slab distances are within gamma(3) of the
-// exact ones, and the interval is widened by 4 u on each side), and a box is
+// cell contains it (min and max are exact). The box test is conservative
+// (Ize, "Robust BVH Ray Traversal", JCGT 2(2), 2013: the slab distances are
+// within gamma(3) of the exact ones, and the interval is widened by 4 u on
+// each side), and a box is
 // passed over only when it starts beyond the best hit by more than the
 // kd-tree's slack, so every leaf holding the closest hit or a tie is tested,
 // with the kd-tree's leaf step (leaf_step-inl.h): the answers are the
 // kd-tree's, bit for bit (leaf_bvh_test.cc, the adversarial suite's
 // preset_check.cc).
 //
-// Memory: 256 bytes a node, 5.7 to 10 bytes a triangle on the 25 standard
-// scenes of 50k triangles or more (render_bench's record: bvh_bytes), and
-// its own leaf packets (bvh_packet_bytes), about as many as the tree's.
+// Memory (render_bench's records, the 25 standard scenes of 50k triangles or
+// more, 44ba8fc): 256 bytes a node, 4.4 to 15.6 bytes a triangle (bvh_bytes),
+// 39 on city and city2, whose groups hold one or two triangles; and its own
+// leaf packets (bvh_packet_bytes), 53 to 149 bytes a triangle: against the
+// tree's bytes (its nodes and packets), 2-4 % fewer on the meshes, up to 16 %
+// more elsewhere, 74 % more on city and city2.
+// Its build from the tree took 0.01-0.08 s below 300k triangles and 0.43-0.80
+// s on the scenes of 1-1.5M (0.06-0.23 s before the groups), most of it the
+// kernel's first touch of its packets' fresh pages (courtyard-1m, perf).
+// With the groups, a camera packet on lost-empire takes 10.1 triangle steps
+// (22.0 before), on city2 2.4 (9.6), a shadow packet on morse-indoor 2.2
+// (5.5); render_bench's packet_counts, out/sweep_s47.
 //
 // Measured (render_bench --classes, sah-packet, 25 standard scenes, two
 // processes of 5 paired rounds, 2026-12-06; README, "What the reproduction
