@@ -226,6 +226,13 @@
 //    triangles are leaves of their own: K_T 20 0.995-1.053, K_T 30
 //    0.970-1.026 (bunny 0.970, one process), the same tree twice
 //    0.986-1.036.
+//    Nor (same A/B; city2, city, lost-empire, morse-indoor, morse-kitchen,
+//    rungholt-1m, bunny, courtyard-1m) a plane's flat groups of sibling kd
+//    cells merged into one BVH leaf, going up the kd hierarchy while the
+//    merged group holds at most 4, 8 or 16 triangles (a large flat triangle
+//    is a leaf in every cell it crosses): renders 0.987-1.019 times as long,
+//    the shadow pass on city and city2 0.965-0.982; the same tree twice
+//    0.988-1.019 (shadow pass on city and city2 1.010): a per cent at most.
 #ifndef KDTREE_CC_KDTREE_LEAF_BVH_H_
 #define KDTREE_CC_KDTREE_LEAF_BVH_H_
 
