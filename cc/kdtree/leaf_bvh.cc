@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -43,17 +42,8 @@ std::pair<int, float> FlatKey(const LaneRef& t) {
 
 // The triangles of the kd leaf whose first packet is `first`, in packet order.
 void LeafLanes(const KdTree& tree, uint32_t first, std::vector<LaneRef>* out) {
-  const float* p = tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
-  for (;; p += kPacketFloats) {
-    uint32_t ids[kPacketLanes];
-    std::memcpy(ids, p + kPacketIds, sizeof(ids));
-    const bool last = (ids[0] & kLastPacket) != 0;
-    ids[0] &= ~kLastPacket;  // lane 0 always holds a triangle
-    for (int l = 0; l < kPacketLanes; ++l) {
-      if (ids[l] != kPadLane) out->push_back({p, l, ids[l]});
-    }
-    if (last) return;
-  }
+  ForEachPacketLane(tree.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats,
+                    [out](const float* p, int l, uint32_t id) { out->push_back({p, l, id}); });
 }
 
 // A kd leaf's groups: per (axis, coordinate), the triangles flat on that
@@ -199,21 +189,15 @@ class Builder {
     g.first = written_;
     g.packets = static_cast<uint32_t>((group.size() + kPacketLanes - 1) / kPacketLanes);
     written_ += g.packets;
-    float* out = out_->leaves.leaf_soa.data() + static_cast<size_t>(g.first) * kPacketFloats;
-    for (size_t j = 0; j < static_cast<size_t>(g.packets) * kPacketLanes; ++j) {
-      float* q = out + (j / kPacketLanes) * kPacketFloats;
-      const int l = static_cast<int>(j % kPacketLanes);
-      uint32_t id = kPadLane;  // and zero vertices
-      if (j < group.size()) {
-        const LaneRef& t = group[j];
-        for (int w = 0; w < 9; ++w) q[w * kPacketLanes + l] = t.packet[w * kPacketLanes + t.lane];
-        id = t.id;
-      } else {
-        for (int w = 0; w < 9; ++w) q[w * kPacketLanes + l] = 0.0f;
-      }
-      if (l == 0 && j / kPacketLanes + 1 == g.packets) id |= kLastPacket;
-      std::memcpy(q + kPacketIds + l, &id, sizeof(id));
+    // Each triangle's 9 floats (a, b, c) out of its packet's lane.
+    rows_.clear();
+    ids_.clear();
+    for (const LaneRef& t : group) {
+      for (int w = 0; w < 9; ++w) rows_.push_back(t.packet[w * kPacketLanes + t.lane]);
+      ids_.push_back(t.id);
     }
+    WriteLeafPacketsFromRows(rows_.data(), ids_.data(), group.size(),
+                             out_->leaves.leaf_soa.data() + size_t{g.first} * kPacketFloats);
     v_.push_back(g);
     return static_cast<int64_t>(v_.size() - 1);
   }
@@ -222,6 +206,8 @@ class Builder {
   LeafBvh* out_;
   std::vector<V> v_;
   uint32_t written_ = 0;  // packets written
+  std::vector<float> rows_;  // Group's scratch: its triangles' vertices
+  std::vector<uint32_t> ids_;  // and indices
   Grouper grouper_;
 };
 

@@ -235,25 +235,19 @@ TEST(LeafBvh, FlatGroups) {
       int plane_axis = -2;
       float plane = 0;
       bool same = true;
-      for (uint32_t id0 = 0; !(id0 & kLastPacket); p += kPacketFloats) {
-        std::memcpy(&id0, p + kPacketIds, sizeof(id0));
-        for (int l = 0; l < kPacketLanes; ++l) {
-          uint32_t id;
-          std::memcpy(&id, p + kPacketIds + l, sizeof(id));
-          if (l > 0 && id == kPadLane) continue;
-          Vec3 v[3];
-          PacketTriangle(p, l, &v[0], &v[1], &v[2]);
-          int axis = -1;
-          for (int k = 2; k >= 0; --k) {
-            if (v[0][k] == v[1][k] && v[1][k] == v[2][k]) axis = k;
-          }
-          if (plane_axis == -2) {
-            plane_axis = axis;
-            plane = axis >= 0 ? v[0][axis] : 0;
-          }
-          same &= axis == plane_axis && (axis < 0 || v[0][axis] == plane);
+      ForEachPacketLane(p, [&](const float* packet, int l, uint32_t) {
+        Vec3 v[3];
+        PacketTriangle(packet, l, &v[0], &v[1], &v[2]);
+        int axis = -1;
+        for (int k = 2; k >= 0; --k) {
+          if (v[0][k] == v[1][k] && v[1][k] == v[2][k]) axis = k;
         }
-      }
+        if (plane_axis == -2) {
+          plane_axis = axis;
+          plane = axis >= 0 ? v[0][axis] : 0;
+        }
+        same &= axis == plane_axis && (axis < 0 || v[0][axis] == plane);
+      });
       flat += plane_axis >= 0;
       mixed += !same;
     }

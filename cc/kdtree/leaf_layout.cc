@@ -20,24 +20,24 @@ constexpr size_t kChunkNodes = 16384;
 uint32_t PacketsOf(uint32_t count) { return (count + kPacketLanes - 1) / kPacketLanes; }
 
 // Writes the packets of the `count` > 0 triangles `tris` at `out` (16-byte
-// aligned). A packet's 36 vertex floats are the transpose of its 4
+// aligned), the k-th triangle's 9 floats (a, b, c) at row(k). A packet's 36
+// vertex floats are the transpose of its 4
 // triangles' 9 floats each (float f of lane l at f * 4 + l): two 4x4
 // transposes and a column, with zero rows for padding lanes. Non-temporal stores: the packets (hundreds
 // of megabytes on the large scenes) are written whole and not read back by
 // the build, so they bypass the caches and skip the read of each line before
 // it is written (the caller fences).
-void WriteLeafPacketsOf(const Vec3* vertices, const uint32_t* tris, uint32_t count, float* out) {
+template <class Row>
+void WritePackets(const Row& row_of, const uint32_t* tris, uint32_t count, float* out) {
   static_assert(kPacketLanes == 4 && kPacketIds == 36, "the transpose below is 4 x 9");
-  static_assert(sizeof(Vec3) == 3 * sizeof(float), "a triangle is 9 packed floats");
   const uint32_t packets = PacketsOf(count);
   static const float kZero[9] = {};
-  const float* verts = reinterpret_cast<const float*>(vertices);
   for (uint32_t j = 0; j < packets; ++j, out += kPacketFloats) {
     const float* row[kPacketLanes];
     alignas(16) uint32_t id[kPacketLanes];
     for (int lane = 0; lane < kPacketLanes; ++lane) {
       const uint32_t k = j * kPacketLanes + lane;
-      row[lane] = k < count ? verts + 9 * static_cast<size_t>(tris[k]) : kZero;
+      row[lane] = k < count ? row_of(k) : kZero;
       id[lane] = k < count ? tris[k] : kPadLane;
     }
     if (j + 1 == packets) id[0] |= kLastPacket;
@@ -55,6 +55,14 @@ void WriteLeafPacketsOf(const Vec3* vertices, const uint32_t* tris, uint32_t cou
     _mm_stream_si128(reinterpret_cast<__m128i*>(out + kPacketIds),
                      _mm_load_si128(reinterpret_cast<const __m128i*>(id)));
   }
+}
+
+// The packets of the `count` > 0 triangles `tris` of the soup's `vertices`.
+void WriteLeafPacketsOf(const Vec3* vertices, const uint32_t* tris, uint32_t count, float* out) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(float), "a triangle is 9 packed floats");
+  const float* verts = reinterpret_cast<const float*>(vertices);
+  WritePackets([&](uint32_t k) { return verts + 9 * static_cast<size_t>(tris[k]); }, tris, count,
+               out);
 }
 
 // The packets of leaf `node` of the lists.
@@ -127,17 +135,8 @@ namespace {
 template <class F>
 void ForEachLeafTriangle(const KdTree& tree, const KdNode& leaf, const F& f) {
   if (leaf.index() == kEmptyLeaf) return;
-  for (const float* packet = tree.leaf_soa.data() + size_t{leaf.index()} * kPacketFloats;;
-       packet += kPacketFloats) {
-    uint32_t id[kPacketLanes];
-    std::memcpy(id, packet + kPacketIds, sizeof(id));
-    const bool last = (id[0] & kLastPacket) != 0;
-    id[0] &= ~kLastPacket;
-    for (uint32_t t : id) {
-      if (t != kPadLane) f(t);  // pads only follow a leaf's last triangle
-    }
-    if (last) return;
-  }
+  ForEachPacketLane(tree.leaf_soa.data() + size_t{leaf.index()} * kPacketFloats,
+                    [&](const float*, int, uint32_t t) { f(t); });
 }
 
 }  // namespace
@@ -145,6 +144,12 @@ void ForEachLeafTriangle(const KdTree& tree, const KdNode& leaf, const F& f) {
 void WriteLeafPackets(const Vec3* verts, const uint32_t* ids, size_t count, float* out) {
   WriteLeafPacketsOf(verts, ids, static_cast<uint32_t>(count), out);
   _mm_sfence();  // its streaming stores are seen by whoever reads the packets next
+}
+
+void WriteLeafPacketsFromRows(const float* rows, const uint32_t* ids, size_t count, float* out) {
+  WritePackets([&](uint32_t k) { return rows + 9 * static_cast<size_t>(k); }, ids,
+               static_cast<uint32_t>(count), out);
+  _mm_sfence();  // as WriteLeafPackets
 }
 
 std::vector<uint32_t> LeafTriangles(const KdTree& tree, const KdNode& leaf) {

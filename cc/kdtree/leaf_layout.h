@@ -36,6 +36,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "cc/geometry/vec3.h"
@@ -63,6 +64,26 @@ bool LayoutLeafTriangles(const ListTree& lists, const Vec3* verts, bool parallel
 // packets): the hierarchy over whole triangles (triangle_bvh.h), which
 // holds no list tree.
 void WriteLeafPackets(const Vec3* verts, const uint32_t* ids, size_t count, float* out);
+
+// The same with the k-th triangle's vertices at rows[9 k .. 9 k + 8] (a, b,
+// c): packets regrouped from other packets (leaf_bvh.cc), with no soup.
+void WriteLeafPacketsFromRows(const float* rows, const uint32_t* ids, size_t count, float* out);
+
+// Calls f(const float* packet, int lane, uint32_t triangle) for each
+// triangle of the leaf whose first packet is at `first`, in packet order.
+template <class F>
+void ForEachPacketLane(const float* first, const F& f) {
+  for (const float* packet = first;; packet += kPacketFloats) {
+    uint32_t id[kPacketLanes];
+    std::memcpy(id, packet + kPacketIds, sizeof(id));
+    const bool last = (id[0] & kLastPacket) != 0;
+    id[0] &= ~kLastPacket;
+    for (int l = 0; l < kPacketLanes; ++l) {
+      if (id[l] != kPadLane) f(packet, l, id[l]);  // pads only follow a leaf's last triangle
+    }
+    if (last) return;
+  }
+}
 
 // The triangles of leaf `leaf` of `tree`, in list order, and their number.
 std::vector<uint32_t> LeafTriangles(const KdTree& tree, const KdNode& leaf);

@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -50,17 +49,9 @@ std::vector<Ray> VertexAndEdgeRays(const TriangleSoup& soup, int count, uint32_t
 // The triangles of the leaf whose first packet is `first`.
 std::vector<uint32_t> LeafIds(const KdTree& leaves, uint32_t first) {
   std::vector<uint32_t> ids;
-  const float* p = leaves.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats;
-  for (;; p += kPacketFloats) {
-    uint32_t id[kPacketLanes];
-    std::memcpy(id, p + kPacketIds, sizeof(id));
-    const bool last = (id[0] & kLastPacket) != 0;
-    id[0] &= ~kLastPacket;
-    for (uint32_t t : id) {
-      if (t != kPadLane) ids.push_back(t);
-    }
-    if (last) return ids;
-  }
+  ForEachPacketLane(leaves.leaf_soa.data() + static_cast<size_t>(first) * kPacketFloats,
+                    [&](const float*, int, uint32_t t) { ids.push_back(t); });
+  return ids;
 }
 
 class TriangleBvhVsKd : public ::testing::TestWithParam<std::string> {};
