@@ -11,6 +11,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
+#include "cc/geometry/ray_rows.h"
 
 namespace kdtree {
 namespace {
@@ -184,31 +185,27 @@ void FillRay16Scalar(const Ray* rays, int n, int* valid, RTCRay16* r) {
 
 // FillRay16Scalar with each row of 16 in one 64-byte store: Embree's 16-wide
 // kernel loads a row as one vector, which 16 narrower stores would not
-// forward to (ray.h LoadRay); gathers read the rays 4 bytes at a time,
-// which forwards from however the renderer wrote them. Paired rounds
-// (render_bench, bunny, city, hairball-small): Embree's packets 1.5-3.5 %
-// faster than with FillRay16Scalar.
+// forward to (ray.h LoadRay). Paired rounds (render_bench, bunny, city,
+// hairball-small): Embree's packets 1.5-3.5 % faster than with
+// FillRay16Scalar, with the rows then gathered 4 bytes at a time. The rows
+// now come from RayRows, the kd-tree's packet set-up's own load (wide loads
+// and permutes, ray_rows-inl.h), so that both tracers pay the same for
+// taking the renderer's rays.
 __attribute__((target("avx512f"))) void FillRay16Wide(const Ray* rays, int n, int* valid,
                                                        RTCRay16* r) {
-  static_assert(sizeof(Ray) == 8 * sizeof(float), "origin, dir, tmin, tmax");
-  Ray tail[16];
-  if (n < 16) {
-    for (int i = 0; i < 16; ++i) tail[i] = i < n ? LoadRay(rays[i]) : Ray{{0, 0, 0}, {1, 0, 0}};
-    rays = tail;
-  }
-  const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  const __m512i at = _mm512_slli_epi32(lane, 3);  // ray i's floats start at 8 i
-  const float* f = &rays[0].origin.x;
   float* const rows[8] = {r->org_x, r->org_y, r->org_z, r->dir_x,
                           r->dir_y, r->dir_z, r->tnear, r->tfar};
-  for (int k = 0; k < 8; ++k) {
-    _mm512_store_ps(rows[k], _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xFFFF, at, f + k, 4));
-  }
+  RayRows(rays, n, rows);
+  const __mmask16 live = static_cast<__mmask16>((1u << n) - 1);
+  // Lanes from n on: FillRay16Scalar's ray, direction (1, 0, 0).
+  _mm512_store_ps(r->dir_x, _mm512_mask_mov_ps(_mm512_set1_ps(1.0f), live,
+                                               _mm512_load_ps(r->dir_x)));
+  const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   _mm512_store_ps(r->time, _mm512_setzero_ps());
   _mm512_store_si512(r->mask, _mm512_set1_epi32(-1));
   _mm512_store_si512(r->id, lane);
   _mm512_store_si512(r->flags, _mm512_setzero_si512());
-  _mm512_store_si512(valid, _mm512_maskz_set1_epi32(static_cast<__mmask16>((1u << n) - 1), -1));
+  _mm512_store_si512(valid, _mm512_maskz_set1_epi32(live, -1));
 }
 
 void FillRay16(const Ray* rays, int n, int* valid, RTCRay16* r) {

@@ -11,6 +11,7 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 // Per target, after foreach_target.h:
+#include "cc/geometry/ray_rows-inl.h"
 #include "cc/kdtree/mask_bits-inl.h"
 
 #include <cstddef>
@@ -121,53 +122,6 @@ HWY_INLINE void SetUpFrameChunk(D d, size_t base, const ChunkRays<D>& r, PacketR
   p->key_bits[4] |= Bits(d, hn::Not(hn::Or(on_x, on_y))) << base;
 }
 
-// Rays [0, n) of `rays` (8 floats each) by component, on targets of 16
-// lanes: c[k] lane r is ray r's float k (0 for r >= n). Eight loads (masked
-// past ray n: AVX-512's masked loads do not fault) and three rounds of
-// two-source permutes (ConcatEven / ConcatOdd, one VPERMT2PS each), where
-// LoadChunk's other path takes eight 16-lane gathers: 100 of a packet's
-// 130 cycles of set-up in a microbenchmark (leaf_bvh_packet_kernel.cc),
-// most of LoadLanes' time in a profile of morse-indoor's renders.
-// In-process A/B (kd_bvh_packet, this path for full packets on AVX3_DL
-// against the gathers on AVX3, 7 paired rounds, one process; 2026-12-07):
-// camera pass 0.942 of the time on morse-indoor, 0.972-0.984 on city2,
-// bunny, lost-empire and morse-trees, 1.000 on hairball-1m (renders
-// 0.973-0.998); the control (gathers on both) 0.987-1.003 (renders
-// 0.975-1.011). The masked loads for shorter packets (most shadow packets)
-// came after; a second A/B with them, in a noisy state of the machine
-// (morse-indoor's rounds 0.62-1.50), gave shadow passes of 0.953-1.008 on
-// seven scenes, 0 mismatches.
-#if HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES == 64
-template <class D>
-HWY_INLINE void TransposeRays(D d, const float* rays, int n, hn::Vec<D> (&c)[8]) {
-  static_assert(hn::MaxLanes(D()) == kLanes, "two rays a vector");
-  using V = hn::Vec<D>;
-  V a[8], b[8];
-  for (int j = 0; j < 8; ++j) {
-    const int avail = 8 * n - 16 * j;  // floats of rays [0, n) in this vector
-    a[j] = avail >= 16 ? hn::LoadU(d, rays + 16 * j)
-                       : hn::MaskedLoad(hn::FirstN(d, avail > 0 ? avail : 0), d, rays + 16 * j);
-  }
-  // b[j], j < 4: rays 4j..4j+3, floats 0, 2, 4, 6; b[4 + j]: floats 1, 3, 5, 7.
-  for (int j = 0; j < 4; ++j) {
-    b[j] = hn::ConcatEven(d, a[2 * j + 1], a[2 * j]);
-    b[4 + j] = hn::ConcatOdd(d, a[2 * j + 1], a[2 * j]);
-  }
-  // a[2h + q + 4i], h < 2: rays 8h..8h+7, floats f and f + 4 for f = 2q + i.
-  for (int i = 0; i < 2; ++i) {
-    for (int h = 0; h < 2; ++h) {
-      a[2 * h + 4 * i] = hn::ConcatEven(d, b[4 * i + 2 * h + 1], b[4 * i + 2 * h]);
-      a[2 * h + 1 + 4 * i] = hn::ConcatOdd(d, b[4 * i + 2 * h + 1], b[4 * i + 2 * h]);
-    }
-  }
-  for (int f = 0; f < 4; ++f) {
-    const int q = f / 2, i = f % 2;
-    c[f] = hn::ConcatEven(d, a[2 + q + 4 * i], a[q + 4 * i]);
-    c[f + 4] = hn::ConcatOdd(d, a[2 + q + 4 * i], a[q + 4 * i]);
-  }
-}
-#endif
-
 // SanitizeRay (ray_check.h) for the lanes [base, base + Lanes(d)) of rays
 // [0, n) (8 floats each: origin, dir, tmin, tmax), in vectors: stores their
 // components into p, directions sanitized (a component below the smallest
@@ -183,9 +137,9 @@ HWY_INLINE uint32_t LoadChunk(D d, const float* rays, int n, size_t base, Packet
   const auto lane = hn::Iota(di, static_cast<int32_t>(base));
   const auto in = hn::Lt(lane, hn::Set(di, n));
   V c[8];
-#if HWY_TARGET != HWY_SCALAR && HWY_MAX_BYTES == 64
-  (void)base;  // 0: one chunk
-  TransposeRays(d, rays, n, c);
+#ifdef KDTREE_HAS_TRANSPOSE_RAYS
+  (void)base;  // 0: one chunk of 16 lanes
+  kdtree::HWY_NAMESPACE::TransposeRays(d, rays, n, c);
 #else
   const auto index = hn::IfThenElseZero(in, hn::Mul(lane, hn::Set(di, 8)));
   for (int k = 0; k < 8; ++k) c[k] = hn::GatherIndex(d, rays + k, index);
