@@ -148,11 +148,13 @@ HWY_INLINE uint32_t EnterLanes(D d, const LeafBvhNode& node, int s, const int ne
 }
 
 // The group's lanes in kV vectors; the descent, the leaf and the pop share
-// the lanes' masks and best hits (one function, as TraceLanes).
+// the lanes' masks and best hits (one function, as TraceLanes). Returns the
+// lanes with a hit; for the closest hit, best[i] gets lane i's (any hit:
+// best is not read; the lanes are the answer).
 template <bool kAnyHit, bool kCount, int kV, class D>
-HWY_INLINE void TraceBvhLanes(D d, const LeafBvh& bvh, const PacketRays& p,
-                              const Group& g, uint32_t lanes, const SlotFilter& filter0,
-                              Hit* best, PacketCounters* counters) {
+HWY_INLINE uint32_t TraceBvhLanes(D d, const LeafBvh& bvh, const PacketRays& p, const Group& g,
+                                  uint32_t lanes, const SlotFilter& filter0, Hit* best,
+                                  PacketCounters* counters) {
   PacketCounters* const c = kCount ? counters : nullptr;  // null: no counting code
   using V = hn::Vec<D>;
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
@@ -258,8 +260,8 @@ HWY_INLINE void TraceBvhLanes(D d, const LeafBvh& bvh, const PacketRays& p,
     // best hit plus slack (any hit: lanes with a hit are done).
     for (;;) {
       if (top == 0) {
-        WriteBest(d, bl, found, best);
-        return;
+        if (!kAnyHit) WriteBest(d, bl, found, best);
+        return found;
       }
       --top;
       uint32_t m = stack.lanes[top] & ~(kAnyHit ? found : 0u);
@@ -280,8 +282,8 @@ HWY_INLINE void TraceBvhLanes(D d, const LeafBvh& bvh, const PacketRays& p,
 }
 
 template <bool kCount>
-HWY_INLINE void TraceBvhGroupFor(const LeafBvh& bvh, const PacketRays& p,
-                                 const Group& g, bool any_hit, Hit* best, PacketCounters* c) {
+HWY_INLINE uint32_t TraceBvhGroupFor(const LeafBvh& bvh, const PacketRays& p, const Group& g,
+                                     bool any_hit, Hit* best, PacketCounters* c) {
   const hn::ScalableTag<float> d;
   constexpr int kV = static_cast<int>(kLanes / hn::MaxLanes(d));
   // An any-hit group of at most kFewLanes lanes never reads the filter (its
@@ -295,20 +297,16 @@ HWY_INLINE void TraceBvhGroupFor(const LeafBvh& bvh, const PacketRays& p,
                                 ? SlotFilter()
                                 : MakeSlotFilter(p, g.lanes);
   if (any_hit) {
-    TraceBvhLanes<true, kCount, kV>(d, bvh, p, g, g.lanes, filter, best, c);
-  } else {
-    TraceBvhLanes<false, kCount, kV>(d, bvh, p, g, g.lanes, filter, best, c);
+    return TraceBvhLanes<true, kCount, kV>(d, bvh, p, g, g.lanes, filter, best, c);
   }
+  return TraceBvhLanes<false, kCount, kV>(d, bvh, p, g, g.lanes, filter, best, c);
 }
 
-void TraceBvhGroupImpl(const LeafBvh& bvh, const PacketRays& p,
-                       const Group& g, bool any_hit, Hit* best, PacketCounters* counters) {
-  if (g.lanes == 0) return;
-  if (counters != nullptr) {
-    TraceBvhGroupFor<true>(bvh, p, g, any_hit, best, counters);
-  } else {
-    TraceBvhGroupFor<false>(bvh, p, g, any_hit, best, nullptr);
-  }
+uint32_t TraceBvhGroupImpl(const LeafBvh& bvh, const PacketRays& p, const Group& g, bool any_hit,
+                           Hit* best, PacketCounters* counters) {
+  if (g.lanes == 0) return 0;
+  if (counters != nullptr) return TraceBvhGroupFor<true>(bvh, p, g, any_hit, best, counters);
+  return TraceBvhGroupFor<false>(bvh, p, g, any_hit, best, nullptr);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -324,25 +322,32 @@ HWY_EXPORT(TraceBvhGroupImpl);
 
 namespace {
 
-// Each live lane's query through `bvh`, group by group (counted in
-// `counters` if not null, as ray_packet.cc's TracePacket counts).
-void TraceBvhPacket(const LeafBvh& bvh, const Ray* rays, int n, const uint32_t* origins,
-                    bool any_hit, Hit (&best)[kRayPacketSize], PacketCounters* counters) {
+// Each live lane's query through `bvh`, group by group; returns the lanes
+// with a hit. Closest hit: `hits` (n of them, Hit() before) get the hits of
+// those lanes; any hit: hits is null. origins may be null (none). The
+// callers' hits are written in place and an any-hit query's answer is the
+// returned lanes, without a packet of Hits to fill, copy and read back (nor
+// an array of origins to fill): in-process A/B (the change on AVX3_DL
+// against the old wrappers on AVX3, 7 paired rounds; 2026-12-07), camera
+// pass 0.922-0.961 of the time on morse-indoor, city2, bunny, lost-empire
+// and morse-kitchen, 0.987 on hairball-1m, shadow pass 0.952-0.999, renders
+// 0.949-0.987; the control (the same code on both) camera 0.987-1.003.
+uint32_t TraceBvhPacket(const LeafBvh& bvh, const Ray* rays, int n, const uint32_t* origins,
+                        bool any_hit, Hit* hits, PacketCounters* counters) {
   packet_internal::PacketRays p;
   packet_internal::PreparePacket(bvh.leaves, rays, n, origins, &p);
-  for (int i = 0; i < n; ++i) {
-    if (p.live & (1u << i)) best[i].t = p.tmax[i];
-  }
   if (counters != nullptr) {
     counters->lanes.rays += static_cast<uint64_t>(n);
     counters->packets += p.live != 0;
   }
+  uint32_t found = 0;
   for (uint32_t rest = p.live; rest != 0;) {
     const packet_internal::Group g = packet_internal::NextGroup(p, &rest);
     if (counters != nullptr) ++counters->groups;
-    HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(bvh, p, g, any_hit, best,
-                                                             counters);
+    found |= HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(bvh, p, g, any_hit, hits,
+                                                                      counters);
   }
+  return found;
 }
 
 }  // namespace
@@ -353,14 +358,8 @@ void IntersectPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n, Hit* hit
     for (int i = 0; i < n; ++i) hits[i] = IntersectLeafBvh(bvh, rays[i]);
     return;
   }
-  uint32_t origins[kRayPacketSize];
-  for (int i = 0; i < n; ++i) origins[i] = kNoHit;
-  Hit best[kRayPacketSize];
-  TraceBvhPacket(bvh, rays, n, origins, false, best, counters);
-  for (int i = 0; i < n; ++i) {
-    hits[i] = best[i];
-    if (!hits[i].hit()) hits[i].t = INFINITY;
-  }
+  for (int i = 0; i < n; ++i) hits[i] = Hit();
+  TraceBvhPacket(bvh, rays, n, nullptr, false, hits, counters);
 }
 
 void OccludedPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n,
@@ -370,11 +369,8 @@ void OccludedPacketLeafBvh(const LeafBvh& bvh, const Ray* rays, int n,
     for (int i = 0; i < n; ++i) occluded[i] = false;
     return;
   }
-  uint32_t origins[kRayPacketSize];
-  for (int i = 0; i < n; ++i) origins[i] = origin_tris != nullptr ? origin_tris[i] : kNoHit;
-  Hit best[kRayPacketSize];
-  TraceBvhPacket(bvh, rays, n, origins, true, best, counters);
-  for (int i = 0; i < n; ++i) occluded[i] = best[i].hit();
+  const uint32_t found = TraceBvhPacket(bvh, rays, n, origin_tris, true, nullptr, counters);
+  for (int i = 0; i < n; ++i) occluded[i] = (found >> i) & 1;
 }
 
 }  // namespace kdtree

@@ -123,7 +123,7 @@ uint32_t SetUpLanes(const AABB& box, PacketRays* p, bool frames_if_none = true);
 
 // Loads rays[0, n) (n <= kLanes) into *p and sets up the lanes that reach
 // the tree's box (p->live), each with origins[i] as its origin triangle
-// (ray_packet.cc).
+// (origins may be null: none; ray_packet.cc).
 void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
                    PacketRays* p);
 

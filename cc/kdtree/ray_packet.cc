@@ -168,12 +168,14 @@ void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* o
     p->live |= 1u << i;
   }
   // Origin triangles of the live lanes (which are among the n rays).
-  uint32_t given[kRayPacketSize];
-  std::memcpy(given, origins, n * sizeof(uint32_t));
-  for (int i = n; i < kRayPacketSize; ++i) given[i] = kNoHit;
+  if (origins == nullptr) {
+    for (int i = 0; i < kRayPacketSize; ++i) p->origin[i] = kNoHit;
+    p->has_origins = false;
+    return;
+  }
   uint32_t any = 0;
   for (int i = 0; i < kRayPacketSize; ++i) {
-    p->origin[i] = (p->live >> i) & 1 ? given[i] : kNoHit;
+    p->origin[i] = (p->live >> i) & 1 ? origins[i] : kNoHit;
     any |= p->origin[i] ^ kNoHit;
   }
   p->has_origins = any != 0;
