@@ -104,9 +104,9 @@ inline constexpr uint32_t kAllLanes = (1u << kLanes) - 1;
 // lanes without a valid ray, lanes n and up included, or with a zero
 // direction component get those of the first valid ray without one, else of
 // the first valid ray) and p->behind; returns the lanes with a valid ray, and
-// in *zero those with a zero direction component. Reads each ray one float at
-// a time (gathers), as the renderer wrote it (ray.h LoadRay). Chosen at run
-// time like TraceGroup.
+// in *zero those with a zero direction component. On targets of 16 lanes
+// the rays are read by wide loads and permutes (geometry/ray_rows-inl.h),
+// elsewhere by gathers. Chosen at run time like TraceGroup.
 uint32_t LoadLanes(const Ray* rays, int n, PacketRays* p, uint32_t* zero);
 
 // SetUpRay (ray_setup.h) for every lane from its ray's components (dir, org,
@@ -136,14 +136,13 @@ Group NextGroup(const PacketRays& p, uint32_t* rest);
 // (TraversalOptions::from_end).
 enum class Search { kClosest, kAny, kAnyFromEnd };
 
-// Traces the group's lanes through tree and
-// writes best[i] for each (closest hit, or for an any-hit search the first
-// hit found; best[i].t must hold ray i's tmax on entry); best has kLanes
-// entries. Chosen at run time for the CPU (Highway's dynamic dispatch:
-// ray_packet_kernel.cc).
+// Traces the group's lanes through tree; returns those with a hit. For the
+// closest hit, best[i] gets lane i's (the other lanes' entries are not
+// touched); an any-hit search writes nothing (best may be null). Chosen at
+// run time for the CPU (Highway's dynamic dispatch: ray_packet_kernel.cc).
 // `counters` (may be null): what the traversal did (ray_packet.h).
-void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search, Hit* best,
-                PacketCounters* counters);
+uint32_t TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
+                    Hit* best, PacketCounters* counters);
 
 // The Highway target TraceGroup runs on now ("AVX3", "AVX2", "SSE4", ...).
 const char* KernelTarget();

@@ -1,9 +1,7 @@
 #include "cc/kdtree/ray_packet.h"
 
 #include <cassert>
-#include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include "cc/geometry/ray_check.h"
 #include "cc/geometry/watertight.h"
@@ -60,32 +58,26 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
 // then SetUpRay: its vector path for every lane at once, its scalar path for
 // a ray with a zero direction component); rays that miss the tree's box are
 // not live.
-void TraceLive(const KdTree& tree, const PacketRays& p, packet_internal::Search search,
-               Hit* best, PacketCounters* counters) {
-  for (uint32_t rest = p.live; rest != 0;) {
-    const Group g = packet_internal::NextGroup(p, &rest);
-    if (counters != nullptr) ++counters->groups;
-    packet_internal::TraceGroup(tree, p, g, search, best, counters);
-  }
-}
-
-
-// The packet's rays, set up and traced; best[i] for i < n, a miss for a ray
-// that does not reach the tree. The kernel reads and writes whole vectors of
-// lanes, hence a full packet.
-void TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
-                 packet_internal::Search search, Hit (&best)[kRayPacketSize],
-                 PacketCounters* counters) {
+// The packet's rays, set up and traced group by group; returns the lanes
+// with a hit. For the closest hit, hits[i] gets ray i's (the others are not
+// touched); an any-hit search writes nothing (hits may be null). origins may
+// be null (none). As the BVH's packets (leaf_bvh_packet_kernel.cc
+// TraceBvhPacket): no packet of Hits to fill, copy and read back.
+uint32_t TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
+                     packet_internal::Search search, Hit* hits, PacketCounters* counters) {
   PacketRays p;
   packet_internal::PreparePacket(tree, rays, n, origins, &p);
-  for (int i = 0; i < n; ++i) {
-    if (p.live & (1u << i)) best[i].t = p.tmax[i];
-  }
   if (counters != nullptr) {
     counters->lanes.rays += static_cast<uint64_t>(n);
     counters->packets += p.live != 0;
   }
-  if (p.live != 0) TraceLive(tree, p, search, best, counters);
+  uint32_t found = 0;
+  for (uint32_t rest = p.live; rest != 0;) {
+    const Group g = packet_internal::NextGroup(p, &rest);
+    if (counters != nullptr) ++counters->groups;
+    found |= packet_internal::TraceGroup(tree, p, g, search, hits, counters);
+  }
+  return found;
 }
 
 TraversalCounters* LaneCounters(PacketCounters* counters) {
@@ -107,13 +99,11 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
     return;
   }
   uint32_t origins[kRayPacketSize];
-  for (int i = 0; i < n; ++i) origins[i] = options.origin_tri;
-  Hit best[kRayPacketSize];
-  TracePacket(tree, rays, n, origins, packet_internal::Search::kClosest, best, counters);
-  for (int i = 0; i < n; ++i) {
-    hits[i] = best[i];
-    if (!hits[i].hit()) hits[i].t = INFINITY;
-  }
+  const bool one_origin = options.origin_tri != kNoHit;
+  for (int i = 0; i < n && one_origin; ++i) origins[i] = options.origin_tri;
+  for (int i = 0; i < n; ++i) hits[i] = Hit();
+  TracePacket(tree, rays, n, one_origin ? origins : nullptr, packet_internal::Search::kClosest,
+              hits, counters);
 }
 
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
@@ -130,14 +120,13 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
   // The packet path is the watertight test's (TreeSupportsPackets), where the
   // origin triangle may be skipped.
   uint32_t origins[kRayPacketSize];
-  for (int i = 0; i < n; ++i) {
-    origins[i] = origin_tris != nullptr ? origin_tris[i] : options.origin_tri;
-  }
-  Hit hits[kRayPacketSize];
+  const bool one_origin = origin_tris == nullptr && options.origin_tri != kNoHit;
+  for (int i = 0; i < n && one_origin; ++i) origins[i] = options.origin_tri;
   using packet_internal::Search;
-  TracePacket(tree, rays, n, origins, options.from_end ? Search::kAnyFromEnd : Search::kAny, hits,
-              counters);
-  for (int i = 0; i < n; ++i) occluded[i] = hits[i].hit();
+  const uint32_t found =
+      TracePacket(tree, rays, n, one_origin ? origins : origin_tris,
+                  options.from_end ? Search::kAnyFromEnd : Search::kAny, nullptr, counters);
+  for (int i = 0; i < n; ++i) occluded[i] = (found >> i) & 1;
 }
 
 

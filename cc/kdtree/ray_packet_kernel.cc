@@ -105,8 +105,8 @@ struct Stack {
 // masks, which stay in registers only inside one function; the single-ray
 // Traverse in traversal.cc is one function for the same reason.)
 template <bool kAnyHit, bool kFromEnd, bool kCount, int kV, class D>
-HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const Group& g,
-                           uint32_t lanes, Hit* best, PacketCounters* counters) {
+HWY_INLINE uint32_t TraceLanes(D d, const KdTree& tree, const PacketRays& p, const Group& g,
+                               uint32_t lanes, Hit* best, PacketCounters* counters) {
   PacketCounters* const c = kCount ? counters : nullptr;  // null: no counting code
   using V = hn::Vec<D>;
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
@@ -149,8 +149,11 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
   uint32_t found = 0, index = 0;
   BestLanes<D> bl[kV];
   StartBest(d, p, bl);
-  // The lanes with a hit get it in best[] (the others keep their miss).
-  const auto finish = [&]() { WriteBest(d, bl, found, best); };
+  // The lanes with a hit: the answer; closest hit, each gets it in best[].
+  const auto finish = [&]() {
+    if (!kAnyHit) WriteBest(d, bl, found, best);
+    return found;
+  };
   const KdNode* nodes = tree.nodes.data();
   Stack stack;
   int top = 0;
@@ -236,10 +239,7 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
     // Next node: each lane drops it when it starts beyond that lane's best
     // hit plus slack (any hit: lanes with a hit are done).
     for (;;) {
-      if (top == 0) {
-        finish();
-        return;
-      }
+      if (top == 0) return finish();
       --top;
       uint32_t m = stack.lanes[top] & ~(kAnyHit ? found : 0u);
       if (!kAnyHit && (m & found) != 0) {
@@ -264,31 +264,26 @@ HWY_INLINE void TraceLanes(D d, const KdTree& tree, const PacketRays& p, const G
 }
 
 template <bool kCount>
-void TraceLanesFor(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
-                   Hit* best, PacketCounters* counters) {
+uint32_t TraceLanesFor(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
+                       Hit* best, PacketCounters* counters) {
   const hn::ScalableTag<float> d;
   constexpr int kV = static_cast<int>(kLanes / hn::MaxLanes(d));
-  if (g.lanes == 0) return;
+  if (g.lanes == 0) return 0;
   switch (search) {
     case Search::kClosest:
-      TraceLanes<false, false, kCount, kV>(d, tree, p, g, g.lanes, best, counters);
-      break;
+      return TraceLanes<false, false, kCount, kV>(d, tree, p, g, g.lanes, best, counters);
     case Search::kAny:
-      TraceLanes<true, false, kCount, kV>(d, tree, p, g, g.lanes, best, counters);
-      break;
+      return TraceLanes<true, false, kCount, kV>(d, tree, p, g, g.lanes, best, counters);
     case Search::kAnyFromEnd:
-      TraceLanes<true, true, kCount, kV>(d, tree, p, g, g.lanes, best, counters);
-      break;
+      return TraceLanes<true, true, kCount, kV>(d, tree, p, g, g.lanes, best, counters);
   }
+  return 0;
 }
 
-void TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
-                    Hit* best, PacketCounters* counters) {
-  if (counters != nullptr) {
-    TraceLanesFor<true>(tree, p, g, search, best, counters);
-  } else {
-    TraceLanesFor<false>(tree, p, g, search, best, nullptr);
-  }
+uint32_t TraceGroupImpl(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
+                        Hit* best, PacketCounters* counters) {
+  if (counters != nullptr) return TraceLanesFor<true>(tree, p, g, search, best, counters);
+  return TraceLanesFor<false>(tree, p, g, search, best, nullptr);
 }
 
 const char* KernelTargetImpl() { return hwy::TargetName(HWY_TARGET); }
@@ -305,9 +300,9 @@ namespace packet_internal {
 HWY_EXPORT(TraceGroupImpl);
 HWY_EXPORT(KernelTargetImpl);
 
-void TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
-                Hit* best, PacketCounters* counters) {
-  HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, search, best, counters);
+uint32_t TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search,
+                    Hit* best, PacketCounters* counters) {
+  return HWY_DYNAMIC_DISPATCH(TraceGroupImpl)(tree, p, g, search, best, counters);
 }
 
 const char* KernelTarget() { return HWY_DYNAMIC_DISPATCH(KernelTargetImpl)(); }
