@@ -29,9 +29,10 @@
 // morse-indoor, city2, lost-empire, bunny, hairball-1m), yet each paid its
 // set-up, about 130 ticks, 100 of them LoadLanes' eight 16-wide gathers (a
 // microbenchmark on rays in L1: the gathers 100, a transposing load of the
-// same rays 13, SetUpLanes 29; Embree's packets pay the same gathers in
-// embree_tracer.cc's FillRay16; such a packet no longer sets up its
-// watertight frames: packet_rays.h SetUpLanes). In a live camera group the leaves take
+// same rays 13, SetUpLanes 29; such a packet no longer sets up its
+// watertight frames: packet_rays.h SetUpLanes). Since 2026-12-07 the rays
+// are loaded by the transposing load (geometry/ray_rows-inl.h), and so are
+// Embree's (embree_tracer.cc FillRay16). In a live camera group the leaves take
 // 59-70 % of the kernel's time: a leaf reached costs 480-750 ticks, for
 // 16-32 triangles (2.8-6.2 leaf packets at 14 lanes a triangle step, or
 // 4-8 packets at about 4 rays in TestLeafFew), a node about 100-110.

@@ -64,7 +64,12 @@ HWY_INLINE void StartBest(D d, const PacketRays& p, BestLanes<D> (&bl)[kV]) {
 }
 
 // The lanes of `found` (bits) get their best hit in best[] (kLanes Hits);
-// the others keep theirs.
+// the others keep theirs. Tried and not kept (in-process A/B, 7 paired
+// rounds, morse-indoor, city2, bunny, lost-empire, morse-kitchen,
+// hairball-1m; 2026-12-07): the hits as four vectors of four Hits each
+// (StoreInterleaved4), written by masked stores of the found lanes instead
+// of the loop below: camera pass 0.981-1.007 of the time, inside the
+// noise (the shadow pass, which does not write hits, moved 0.970-0.992).
 template <int kV, class D>
 HWY_INLINE void WriteBest(D d, const BestLanes<D> (&bl)[kV], uint32_t found, Hit* best) {
   constexpr int n = static_cast<int>(hn::MaxLanes(D()));
