@@ -57,9 +57,13 @@ absl::StatusOr<Json> CountPackets(const TriangleSoup& soup, const KdTree& tree, 
     auto t = std::make_unique<TriangleBvhTracer>(std::move(tri));
     t->CountPackets(&closest, &any);
     tracer = std::move(t);
+  } else if (through == CountThrough::kLeafBvh) {
+    absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> t = KdTreeBvhTracer::Build(tree);
+    if (!t.ok()) return t.status();
+    (*t)->CountPackets(&closest, &any);
+    tracer = *std::move(t);
   } else {
-    auto t = through == CountThrough::kLeafBvh ? std::make_unique<KdTreeBvhTracer>(tree)
-                                               : std::make_unique<KdTreeTracer>(tree);
+    auto t = std::make_unique<KdTreeTracer>(tree);
     t->CountPackets(&closest, &any);
     tracer = std::move(t);
   }

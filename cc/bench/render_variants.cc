@@ -26,7 +26,9 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
   trees->tree = *std::move(tree);
   trees->kd = std::make_unique<KdTreeTracer>(trees->tree);
   const absl::Time start = absl::Now();
-  trees->bvh = std::make_unique<KdTreeBvhTracer>(trees->tree);
+  absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> bvh = KdTreeBvhTracer::Build(trees->tree);
+  if (!bvh.ok()) return bvh.status();
+  trees->bvh = *std::move(bvh);
   trees->bvh_build_seconds = absl::ToDoubleSeconds(absl::Now() - start);
   if (triangle_bvh) {
     absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> tri = TriangleBvhTracer::Build(soup);
@@ -42,7 +44,9 @@ absl::StatusOr<std::unique_ptr<SceneTrees>> BuildSceneTrees(
     e.name = absl::StrCat("env:", path.substr(path.find_last_of('/') + 1));  // npos + 1 == 0
     e.tree = std::make_unique<KdTree>(*std::move(t));
     if (env_variant == "kd_bvh" || env_variant == "kd_bvh_packet") {
-      e.tracer = std::make_unique<KdTreeBvhTracer>(*e.tree);
+      absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> t = KdTreeBvhTracer::Build(*e.tree);
+      if (!t.ok()) return t.status();
+      e.tracer = *std::move(t);
     } else {
       e.tracer = std::make_unique<KdTreeTracer>(*e.tree);
     }

@@ -8,12 +8,13 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "cc/base/memory_budget.h"
 #include "cc/geometry/aabb.h"
 #include "cc/kdtree/leaf_layout.h"
 #include "cc/kdtree/wide_collapse.h"
@@ -97,21 +98,13 @@ class Builder {
  public:
   Builder(const KdTree& tree, LeafBvh* out) : tree_(tree), out_(out) {}
 
-  void Build() {
+  // `packets`: LeafBvhPacketBytes(tree) in packets.
+  void Build(uint64_t packets) {
     out_->leaves.bounds = tree_.bounds;
     out_->leaves.triangles = tree_.triangles;
     out_->leaves.config = tree_.config;
     // One allocation for the packets: as many as the groups need (fewer
     // when a group is dropped), written as the groups are made.
-    const uint64_t packets = LeafBvhPacketBytes(tree_) / (kPacketFloats * sizeof(float));
-    // A child slot holds kLeafBit | the first packet. Unreachable within
-    // the build's memory budget (2^31 packets are 320 GiB), but never
-    // silently wrong.
-    if (packets >= LeafBvhNode::kLeafBit) {
-      std::fprintf(stderr, "BuildLeafBvh: %llu leaf packets, more than a node can address\n",
-                   static_cast<unsigned long long>(packets));
-      std::abort();
-    }
     out_->leaves.leaf_soa.resize(packets * kPacketFloats);  // every float written by Group
     const int64_t root = Node(0, tree_.bounds);
     out_->leaves.leaf_soa.resize(static_cast<size_t>(written_) * kPacketFloats);
@@ -226,10 +219,24 @@ uint64_t LeafBvhPacketBytes(const KdTree& tree) {
   return packets * kPacketFloats * sizeof(float);
 }
 
-LeafBvh BuildLeafBvh(const KdTree& tree) {
+absl::StatusOr<LeafBvh> BuildLeafBvh(const KdTree& tree, uint64_t max_packet_bytes) {
   LeafBvh bvh;
   if (tree.nodes.empty() || !tree.bounds.Valid() || tree.leaf_soa.empty()) return bvh;
-  Builder(tree, &bvh).Build();
+  const uint64_t bytes = LeafBvhPacketBytes(tree);
+  if (absl::Status st = CheckMemoryBudget(bytes, max_packet_bytes,
+                                          "the BVH over the tree's leaves (its own leaf packets)",
+                                          "the part its caller left for it");
+      !st.ok()) {
+    return st;
+  }
+  const uint64_t packets = bytes / (kPacketFloats * sizeof(float));
+  // A child slot holds kLeafBit | the first packet (2^31 packets are 320 GiB).
+  if (packets >= LeafBvhNode::kLeafBit) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "the BVH over the tree's leaves needs ", packets,
+        " leaf packets, more than a node can address (2^31)"));
+  }
+  Builder(tree, &bvh).Build(packets);
   return bvh;
 }
 

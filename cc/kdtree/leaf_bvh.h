@@ -238,8 +238,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "cc/geometry/ray.h"
 #include "cc/kdtree/tree.h"
 
@@ -281,12 +283,15 @@ struct LeafBvh {
 
 // The hierarchy over `tree`'s non-empty leaves, each split into its flat
 // groups and the rest (above), with their packets copied from the tree's:
-// it does not refer to `tree`.
-LeafBvh BuildLeafBvh(const KdTree& tree);
+// it does not refer to `tree`. Its packets are counted first (one pass over
+// the leaves, LeafBvhPacketBytes) and allocated once: ResourceExhausted,
+// before any allocation, when they need more than max_packet_bytes or more
+// packets than a node's slot can address (2^31).
+absl::StatusOr<LeafBvh> BuildLeafBvh(
+    const KdTree& tree, uint64_t max_packet_bytes = std::numeric_limits<uint64_t>::max());
 
 // At least the bytes of BuildLeafBvh(tree)'s packets (LeafBvh::packet_bytes;
-// equal unless a group meets its cell nowhere), counted without building it:
-// for a memory budget.
+// equal unless a group meets its cell nowhere), counted without building it.
 uint64_t LeafBvhPacketBytes(const KdTree& tree);
 
 // The kd-tree's queries (traversal.h, watertight test), through `bvh`:

@@ -11,8 +11,11 @@
 #include <cstring>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "cc/kdtree/builder.h"
 #include "cc/kdtree/bvh_check.h"
@@ -25,6 +28,13 @@
 namespace kdtree {
 namespace {
 
+// BuildLeafBvh's hierarchy, which without a budget always builds.
+LeafBvh Built(const KdTree& tree) {
+  absl::StatusOr<LeafBvh> bvh = BuildLeafBvh(tree);
+  EXPECT_TRUE(bvh.ok()) << bvh.status();
+  return bvh.ok() ? *std::move(bvh) : LeafBvh();
+}
+
 class LeafBvhVsKd : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 TEST_P(LeafBvhVsKd, SameAnswers) {
@@ -34,7 +44,7 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   ASSERT_TRUE(config.ok());
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *config);
   ASSERT_TRUE(tree.ok()) << tree.status();
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   ASSERT_FALSE(bvh.nodes.empty());
   std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
@@ -83,7 +93,7 @@ TEST(LeafBvh, PacketsOnEveryTarget) {
   const TriangleSoup soup = testing::NamedScene("voxels");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   std::vector<Ray> rays = testing::CameraRays(soup, 64, 64);
   for (const Ray& r : testing::RandomRays(soup, 4000, 11)) rays.push_back(r);
   for (const Ray& r : testing::GridAxisRays(1000, 13)) rays.push_back(r);
@@ -102,7 +112,7 @@ TEST(LeafBvh, FewRayAnyHitPacketsOnEveryTarget) {
   const TriangleSoup soup = testing::NamedScene("sphere");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   std::vector<Ray> rays = testing::CameraRays(soup, 48, 48);
   for (const Ray& r : testing::RandomRays(soup, 3000, 23)) rays.push_back(r);
   std::vector<uint32_t> origins(rays.size(), kNoHit);
@@ -145,7 +155,7 @@ TEST(LeafBvh, PacketCountsChangeNoAnswer) {
   const TriangleSoup soup = testing::NamedScene("sphere");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   std::vector<Ray> rays = testing::CameraRays(soup, 64, 64);
   for (const Ray& r : testing::RandomRays(soup, 4000, 17)) rays.push_back(r);
   PacketCounters closest, any;
@@ -222,7 +232,7 @@ TEST(LeafBvh, FlatGroups) {
   const TriangleSoup soup = testing::NamedScene("voxels");
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, *Preset("sah-packet"));
   ASSERT_TRUE(tree.ok());
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   EXPECT_EQ(PacketIds(bvh.leaves.leaf_soa.data(), bvh.leaves.leaf_soa.size()),
             PacketIds(tree->leaf_soa.data(), tree->leaf_soa.size()));
   int leaves = 0, flat = 0, mixed = 0;
@@ -259,14 +269,23 @@ TEST(LeafBvh, FlatGroups) {
   const TriangleSoup sphere = testing::NamedScene("sphere");
   absl::StatusOr<KdTree> round = BuildKdTree(sphere, *Preset("sah-packet"));
   ASSERT_TRUE(round.ok());
-  EXPECT_EQ(LeafBvhPacketBytes(*round), BuildLeafBvh(*round).packet_bytes());
+  EXPECT_EQ(LeafBvhPacketBytes(*round), Built(*round).packet_bytes());
+  // A budget one byte short of the packets: refused, saying why.
+  const uint64_t bytes = LeafBvhPacketBytes(*tree);
+  absl::StatusOr<LeafBvh> short_of = BuildLeafBvh(*tree, bytes - 1);
+  ASSERT_FALSE(short_of.ok());
+  EXPECT_EQ(short_of.status().code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_NE(short_of.status().message().find("the BVH over the tree's leaves"), std::string::npos);
+  absl::StatusOr<LeafBvh> exact = BuildLeafBvh(*tree, bytes);
+  ASSERT_TRUE(exact.ok()) << exact.status();
+  EXPECT_EQ(exact->packet_bytes(), bytes);
 }
 
 TEST(LeafBvh, EmptyTreeAndMisses) {
   TriangleSoup soup;
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, Config());
   ASSERT_TRUE(tree.ok());
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   EXPECT_TRUE(bvh.nodes.empty());
   Ray r;
   r.dir = Vec3(0, 0, 1);
@@ -279,7 +298,7 @@ TEST(LeafBvh, SingleLeafAndBadRays) {
   soup.Add({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   absl::StatusOr<KdTree> tree = BuildKdTree(soup, Config());
   ASSERT_TRUE(tree.ok());
-  const LeafBvh bvh = BuildLeafBvh(*tree);
+  const LeafBvh bvh = Built(*tree);
   ASSERT_EQ(bvh.nodes.size(), 1u);
   Ray r;
   r.origin = Vec3(0.25f, 0.25f, 1);

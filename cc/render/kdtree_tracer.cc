@@ -38,6 +38,13 @@ void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin
   ::kdtree::OccludedPacket(tree_, rays, n, origin_tris, occluded, o, any_);
 }
 
+absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> KdTreeBvhTracer::Build(
+    const KdTree& tree, uint64_t max_packet_bytes) {
+  absl::StatusOr<LeafBvh> bvh = BuildLeafBvh(tree, max_packet_bytes);
+  if (!bvh.ok()) return bvh.status();
+  return std::make_unique<KdTreeBvhTracer>(tree, *std::move(bvh));
+}
+
 absl::StatusOr<std::unique_ptr<TriangleBvhTracer>> TriangleBvhTracer::Build(
     const TriangleSoup& soup) {
   const absl::Time start = absl::Now();

@@ -3,6 +3,8 @@
 #ifndef KDTREE_CC_RENDER_KDTREE_TRACER_H_
 #define KDTREE_CC_RENDER_KDTREE_TRACER_H_
 
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -62,8 +64,11 @@ class KdTreeTracer : public Tracer {
 // KdTreeTracer::Occluded. `tree` must outlive it.
 class KdTreeBvhTracer : public KdTreeTracer {
  public:
-  explicit KdTreeBvhTracer(const KdTree& tree)
-      : KdTreeTracer(tree), bvh_(BuildLeafBvh(tree)) {}
+  KdTreeBvhTracer(const KdTree& tree, LeafBvh bvh) : KdTreeTracer(tree), bvh_(std::move(bvh)) {}
+  // Builds the BVH over `tree`'s leaves (BuildLeafBvh's errors: its packets
+  // need more than max_packet_bytes).
+  static absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> Build(
+      const KdTree& tree, uint64_t max_packet_bytes = std::numeric_limits<uint64_t>::max());
   std::string name() const override { return "kdtree_bvh"; }
   using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(bvh_, ray); }

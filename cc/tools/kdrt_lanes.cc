@@ -3,11 +3,9 @@
 #include <memory>
 #include <utility>
 
+#include "absl/strings/str_cat.h"
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
-#include "cc/base/memory_budget.h"
-#include "cc/kdtree/leaf_bvh.h"
-
 #include "cc/tools/kdrt_record.h"
 
 namespace kdtree {
@@ -27,14 +25,15 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     RenderOptions so = ropt;
     so.skip_origin = true;
     lanes.push_back({kSingleOriginLane, &kd, so});
-    if (absl::Status st = CheckMemoryBudget(
-            LeafBvhPacketBytes(tree), choice.bvh_budget,
-            "the BVH over the tree's leaves (its own leaf packets)", "kdrt --memory_budget_gb");
-        !st.ok()) {
-      return st;
-    }
     const absl::Time start = absl::Now();
-    set.bvh = std::make_unique<KdTreeBvhTracer>(tree);
+    absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> bvh =
+        KdTreeBvhTracer::Build(tree, choice.bvh_budget);
+    if (!bvh.ok()) {
+      return absl::Status(bvh.status().code(),
+                          absl::StrCat(bvh.status().message(),
+                                       "; raise it with kdrt --memory_budget_gb"));
+    }
+    set.bvh = *std::move(bvh);
     set.bvh_built.build_s = absl::ToDoubleSeconds(absl::Now() - start);
     set.bvh_built.node_bytes = set.bvh->bvh().node_bytes();
     set.bvh_built.packet_bytes = set.bvh->bvh().packet_bytes();
