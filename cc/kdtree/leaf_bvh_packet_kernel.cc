@@ -293,7 +293,12 @@ HWY_INLINE uint32_t TraceBvhGroupFor(const LeafBvh& bvh, const PacketRays& p, co
   // 0.967 on bunny and 0.974 on city2 (every round below 1), 0.984-1.004
   // elsewhere; the control (the same code on both targets) 0.995-1.008. Its
   // camera pass, unchanged code, moved 0.974-0.993 in the same run, so the
-  // gain is at most a few per cent where shadow groups are small.
+  // gain is at most a few per cent where shadow groups are small. Nor made
+  // for any any-hit group (the flat scenes' shadow packets take about two
+  // nodes, where the filter costs 12-14 ns a group): shadow pass 1.009-1.047
+  // times as long on morse-indoor, city2, city, morse-kitchen, bunny,
+  // lost-empire and hairball-1m (same A/B, 2026-12-07, a noisy state of the
+  // machine): not kept.
   const SlotFilter filter = any_hit && __builtin_popcount(g.lanes) <= kFewLanes
                                 ? SlotFilter()
                                 : MakeSlotFilter(p, g.lanes);
