@@ -197,7 +197,8 @@ __attribute__((target("avx512f"))) void FillRay16Wide(const Ray* rays, int n, in
                           r->dir_y, r->dir_z, r->tnear, r->tfar};
   RayRows(rays, n, rows);
   const __mmask16 live = static_cast<__mmask16>((1u << n) - 1);
-  // Lanes from n on: FillRay16Scalar's ray, direction (1, 0, 0).
+  // Lanes from n on (invalid for Embree): direction (1, 0, 0), as in
+  // FillRay16Scalar; their other rows 0.
   _mm512_store_ps(r->dir_x, _mm512_mask_mov_ps(_mm512_set1_ps(1.0f), live,
                                                _mm512_load_ps(r->dir_x)));
   const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);

@@ -10,8 +10,12 @@
 // Per target, after foreach_target.h:
 #include "cc/geometry/ray_rows-inl.h"
 
+#include <cstdint>
+#include <vector>
+
 #include "cc/geometry/ray.h"
 #include "cc/geometry/ray_rows.h"
+#include "hwy/targets.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace kdtree {
@@ -44,6 +48,8 @@ HWY_EXPORT(RayRowsImpl);
 void RayRows(const Ray* rays, int n, float* const rows[8]) {
   HWY_DYNAMIC_DISPATCH(RayRowsImpl)(rays, n, rows);
 }
+
+std::vector<int64_t> RayRowsTargets() { return hwy::SupportedAndGeneratedTargets(); }
 
 }  // namespace kdtree
 #endif  // HWY_ONCE

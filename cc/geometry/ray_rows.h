@@ -3,6 +3,9 @@
 #ifndef KDTREE_CC_GEOMETRY_RAY_ROWS_H_
 #define KDTREE_CC_GEOMETRY_RAY_ROWS_H_
 
+#include <cstdint>
+#include <vector>
+
 #include "cc/geometry/ray.h"
 
 namespace kdtree {
@@ -12,6 +15,10 @@ namespace kdtree {
 // aligned. On targets of 16 float lanes by ray_rows-inl.h's TransposeRays,
 // elsewhere one float at a time.
 void RayRows(const Ray* rays, int n, float* const rows[8]);
+
+// The Highway targets RayRows is compiled for that this CPU runs (its test
+// runs each, through hwy::SetSupportedTargetsForTest).
+std::vector<int64_t> RayRowsTargets();
 
 }  // namespace kdtree
 

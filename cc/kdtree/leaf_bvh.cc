@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -219,13 +220,14 @@ uint64_t LeafBvhPacketBytes(const KdTree& tree) {
   return packets * kPacketFloats * sizeof(float);
 }
 
-absl::StatusOr<LeafBvh> BuildLeafBvh(const KdTree& tree, uint64_t max_packet_bytes) {
+absl::StatusOr<LeafBvh> BuildLeafBvh(const KdTree& tree, uint64_t max_packet_bytes,
+                                     const std::string& how_to_raise) {
   LeafBvh bvh;
   if (tree.nodes.empty() || !tree.bounds.Valid() || tree.leaf_soa.empty()) return bvh;
   const uint64_t bytes = LeafBvhPacketBytes(tree);
   if (absl::Status st = CheckMemoryBudget(bytes, max_packet_bytes,
                                           "the BVH over the tree's leaves (its own leaf packets)",
-                                          "the part its caller left for it");
+                                          how_to_raise);
       !st.ok()) {
     return st;
   }

@@ -239,6 +239,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -285,10 +286,12 @@ struct LeafBvh {
 // groups and the rest (above), with their packets copied from the tree's:
 // it does not refer to `tree`. Its packets are counted first (one pass over
 // the leaves, LeafBvhPacketBytes) and allocated once: ResourceExhausted,
-// before any allocation, when they need more than max_packet_bytes or more
-// packets than a node's slot can address (2^31).
+// before any allocation, when they need more than max_packet_bytes (the
+// message ends with how_to_raise in parentheses, as CheckMemoryBudget's) or
+// more packets than a node's slot can address (2^31).
 absl::StatusOr<LeafBvh> BuildLeafBvh(
-    const KdTree& tree, uint64_t max_packet_bytes = std::numeric_limits<uint64_t>::max());
+    const KdTree& tree, uint64_t max_packet_bytes = std::numeric_limits<uint64_t>::max(),
+    const std::string& how_to_raise = "BuildLeafBvh's max_packet_bytes");
 
 // At least the bytes of BuildLeafBvh(tree)'s packets (LeafBvh::packet_bytes;
 // equal unless a group meets its cell nowhere), counted without building it.

@@ -50,7 +50,6 @@
 #include "cc/kdtree/slot_filter-inl.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 
 #include "cc/kdtree/leaf_bvh.h"
@@ -150,8 +149,8 @@ HWY_INLINE uint32_t EnterLanes(D d, const LeafBvhNode& node, int s, const int ne
 
 // The group's lanes in kV vectors; the descent, the leaf and the pop share
 // the lanes' masks and best hits (one function, as TraceLanes). Returns the
-// lanes with a hit; for the closest hit, best[i] gets lane i's (any hit:
-// best is not read; the lanes are the answer).
+// lanes with a hit; for the closest hit, best[i] gets the hit of each such
+// lane i (any hit: best is not touched; the lanes are the answer).
 template <bool kAnyHit, bool kCount, int kV, class D>
 HWY_INLINE uint32_t TraceBvhLanes(D d, const LeafBvh& bvh, const PacketRays& p, const Group& g,
                                   uint32_t lanes, const SlotFilter& filter0, Hit* best,

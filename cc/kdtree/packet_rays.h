@@ -137,8 +137,8 @@ Group NextGroup(const PacketRays& p, uint32_t* rest);
 enum class Search { kClosest, kAny, kAnyFromEnd };
 
 // Traces the group's lanes through tree; returns those with a hit. For the
-// closest hit, best[i] gets lane i's (the other lanes' entries are not
-// touched); an any-hit search writes nothing (best may be null). Chosen at
+// closest hit, best[i] gets the hit of each such lane i (the other entries
+// are not touched); an any-hit search writes nothing (best may be null). Chosen at
 // run time for the CPU (Highway's dynamic dispatch: ray_packet_kernel.cc).
 // `counters` (may be null): what the traversal did (ray_packet.h).
 uint32_t TraceGroup(const KdTree& tree, const PacketRays& p, const Group& g, Search search,

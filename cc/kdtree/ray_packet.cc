@@ -1,5 +1,6 @@
 #include "cc/kdtree/ray_packet.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cstdint>
 
@@ -54,10 +55,6 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
   packet_internal::SetLaneKey(p, i, s.negative, w.kz);
 }
 
-// The set-up of each ray as the single-ray traversal does it (SanitizeRay,
-// then SetUpRay: its vector path for every lane at once, its scalar path for
-// a ray with a zero direction component); rays that miss the tree's box are
-// not live.
 // The packet's rays, set up and traced group by group; returns the lanes
 // with a hit. For the closest hit, hits[i] gets ray i's (the others are not
 // touched); an any-hit search writes nothing (hits may be null). origins may
@@ -84,6 +81,16 @@ TraversalCounters* LaneCounters(PacketCounters* counters) {
   return counters != nullptr ? &counters->lanes : nullptr;
 }
 
+// The origin triangles TracePacket takes: `given` (one per ray) if not null,
+// else options' one triangle for all n rays (in *store), else null (none).
+const uint32_t* PacketOrigins(const uint32_t* given, const TraversalOptions& options, int n,
+                              uint32_t (&store)[kRayPacketSize]) {
+  if (given != nullptr) return given;
+  if (options.origin_tri == kNoHit) return nullptr;
+  std::fill_n(store, n, options.origin_tri);
+  return store;
+}
+
 }  // namespace
 
 bool PacketPathApplies(const KdTree& tree, const TraversalOptions& options) {
@@ -98,12 +105,10 @@ void IntersectPacket(const KdTree& tree, const Ray* rays, int n, Hit* hits,
     for (int i = 0; i < n; ++i) hits[i] = Intersect(tree, rays[i], options, LaneCounters(counters));
     return;
   }
-  uint32_t origins[kRayPacketSize];
-  const bool one_origin = options.origin_tri != kNoHit;
-  for (int i = 0; i < n && one_origin; ++i) origins[i] = options.origin_tri;
+  uint32_t store[kRayPacketSize] = {};
   for (int i = 0; i < n; ++i) hits[i] = Hit();
-  TracePacket(tree, rays, n, one_origin ? origins : nullptr, packet_internal::Search::kClosest,
-              hits, counters);
+  TracePacket(tree, rays, n, PacketOrigins(nullptr, options, n, store),
+              packet_internal::Search::kClosest, hits, counters);
 }
 
 void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origin_tris,
@@ -119,12 +124,10 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
   }
   // The packet path is the watertight test's (TreeSupportsPackets), where the
   // origin triangle may be skipped.
-  uint32_t origins[kRayPacketSize];
-  const bool one_origin = origin_tris == nullptr && options.origin_tri != kNoHit;
-  for (int i = 0; i < n && one_origin; ++i) origins[i] = options.origin_tri;
+  uint32_t store[kRayPacketSize] = {};
   using packet_internal::Search;
   const uint32_t found =
-      TracePacket(tree, rays, n, one_origin ? origins : origin_tris,
+      TracePacket(tree, rays, n, PacketOrigins(origin_tris, options, n, store),
                   options.from_end ? Search::kAnyFromEnd : Search::kAny, nullptr, counters);
   for (int i = 0; i < n; ++i) occluded[i] = (found >> i) & 1;
 }
@@ -132,6 +135,10 @@ void OccludedPacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* 
 
 namespace packet_internal {
 
+// The set-up of each ray as the single-ray traversal does it (SanitizeRay,
+// then SetUpRay: its vector path for every lane at once, its scalar path for
+// a ray with a zero direction component); rays that miss the tree's box are
+// not live.
 void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
                    PacketRays* p) {
   assert(n >= 0 && n <= kRayPacketSize);
@@ -170,8 +177,8 @@ void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* o
   p->has_origins = any != 0;
 }
 
-// Traces the live lanes, one group of lanes with the same direction signs and
-// watertight axes at a time.
+// The next group of *rest's lanes: those with the same direction signs and
+// watertight axes as its lowest (packet_rays.h).
 Group NextGroup(const PacketRays& p, uint32_t* rest) {
   const int first = __builtin_ctz(*rest);
   Group g;

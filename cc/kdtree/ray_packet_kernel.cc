@@ -41,7 +41,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include "cc/geometry/watertight.h"
 #include "cc/kdtree/leaf_layout.h"
@@ -140,7 +139,7 @@ HWY_INLINE uint32_t TraceLanes(D d, const KdTree& tree, const PacketRays& p, con
   Frames<D> frames[kV];
   for (int v = 0; v < kV; ++v) frames[v] = Frames<D>(d, p, v * n);
   // Each lane's best hit so far (leaf_test-inl.h BestLanes), in vectors: no
-  // hit yet, at the ray's tmax (as best[i] holds on entry). Kept in an array
+  // hit yet, at the ray's tmax. Kept in an array
   // of floats written one at a time, every vector read of the best t after a
   // hit (FinishLanes' tmax, the pop's cull) waited for store-to-load
   // forwarding (in-process A/B, 7 paired rounds, six scenes, 2026-12-06:

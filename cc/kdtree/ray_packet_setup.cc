@@ -138,7 +138,7 @@ HWY_INLINE uint32_t LoadChunk(D d, const float* rays, int n, size_t base, Packet
   const auto in = hn::Lt(lane, hn::Set(di, n));
   V c[8];
 #ifdef KDTREE_HAS_TRANSPOSE_RAYS
-  (void)base;  // 0: one chunk of 16 lanes
+  HWY_DASSERT(base == 0);  // one chunk of 16 lanes
   kdtree::HWY_NAMESPACE::TransposeRays(d, rays, n, c);
 #else
   const auto index = hn::IfThenElseZero(in, hn::Mul(lane, hn::Set(di, 8)));

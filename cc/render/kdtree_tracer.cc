@@ -39,8 +39,8 @@ void KdTreeTracer::OccludedPacket(const Ray* rays, int n, const uint32_t* origin
 }
 
 absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> KdTreeBvhTracer::Build(
-    const KdTree& tree, uint64_t max_packet_bytes) {
-  absl::StatusOr<LeafBvh> bvh = BuildLeafBvh(tree, max_packet_bytes);
+    const KdTree& tree, uint64_t max_packet_bytes, const std::string& how_to_raise) {
+  absl::StatusOr<LeafBvh> bvh = BuildLeafBvh(tree, max_packet_bytes, how_to_raise);
   if (!bvh.ok()) return bvh.status();
   return std::make_unique<KdTreeBvhTracer>(tree, *std::move(bvh));
 }

@@ -65,10 +65,11 @@ class KdTreeTracer : public Tracer {
 class KdTreeBvhTracer : public KdTreeTracer {
  public:
   KdTreeBvhTracer(const KdTree& tree, LeafBvh bvh) : KdTreeTracer(tree), bvh_(std::move(bvh)) {}
-  // Builds the BVH over `tree`'s leaves (BuildLeafBvh's errors: its packets
-  // need more than max_packet_bytes).
+  // Builds the BVH over `tree`'s leaves (BuildLeafBvh, its arguments and
+  // errors).
   static absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> Build(
-      const KdTree& tree, uint64_t max_packet_bytes = std::numeric_limits<uint64_t>::max());
+      const KdTree& tree, uint64_t max_packet_bytes = std::numeric_limits<uint64_t>::max(),
+      const std::string& how_to_raise = "KdTreeBvhTracer::Build's max_packet_bytes");
   std::string name() const override { return "kdtree_bvh"; }
   using Tracer::Occluded;
   Hit Intersect(const Ray& ray) const override { return IntersectLeafBvh(bvh_, ray); }

@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "absl/status/statusor.h"
 #include "absl/strings/numbers.h"
 #include "cc/base/json_line.h"
 #include "cc/kdtree/brute_force.h"
@@ -158,6 +159,7 @@ CheckResult CheckTree(const KdTree& tree, const std::vector<Ray>& rays,
     if (bvh.ok()) {
       CheckLeafBvh(*bvh, rays, reference, &bad, &bad_any);
     } else {
+      std::fprintf(stderr, "preset_check: %s\n", bvh.status().ToString().c_str());
       std::fill(bad.begin(), bad.end(), 1);
       std::fill(bad_any.begin(), bad_any.end(), 1);
     }

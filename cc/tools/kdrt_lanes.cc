@@ -3,9 +3,12 @@
 #include <memory>
 #include <utility>
 
-#include "absl/strings/str_cat.h"
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "absl/time/clock.h"
 #include "absl/time/time.h"
+#include "cc/kdtree/leaf_bvh.h"
+#include "cc/render/kdtree_tracer.h"
 #include "cc/tools/kdrt_record.h"
 
 namespace kdtree {
@@ -27,12 +30,8 @@ absl::StatusOr<LaneSet> MakeLanes(const TriangleSoup& soup, const KdTree& tree, 
     lanes.push_back({kSingleOriginLane, &kd, so});
     const absl::Time start = absl::Now();
     absl::StatusOr<std::unique_ptr<KdTreeBvhTracer>> bvh =
-        KdTreeBvhTracer::Build(tree, choice.bvh_budget);
-    if (!bvh.ok()) {
-      return absl::Status(bvh.status().code(),
-                          absl::StrCat(bvh.status().message(),
-                                       "; raise it with kdrt --memory_budget_gb"));
-    }
+        KdTreeBvhTracer::Build(tree, choice.bvh_budget, "kdrt --memory_budget_gb");
+    if (!bvh.ok()) return bvh.status();
     set.bvh = *std::move(bvh);
     set.bvh_built.build_s = absl::ToDoubleSeconds(absl::Now() - start);
     set.bvh_built.node_bytes = set.bvh->bvh().node_bytes();
