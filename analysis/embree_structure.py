@@ -46,16 +46,11 @@ NOISE = 0.02
 
 
 def _kd_bytes(r):
-    """Bytes a triangle of all our best mode reads: the BVH over the tree's
-    leaves, its nodes and its own leaf packets (records since session 47),
-    or before those, its nodes and the tree's nodes and leaf packets; None
-    without the BVH's bytes (records before 2026-12-07)."""
-    bvh = tree_memory.record_per_triangle(r, "bvh_bytes")
-    own = tree_memory.record_per_triangle(r, "bvh_packet_bytes")
-    if bvh is not None and own is not None:
-        return bvh + own
-    tree = tree_memory.record_per_triangle(r, "tree_bytes")
-    return tree + bvh if tree is not None and bvh is not None else None
+    """Bytes a triangle of all our best mode reads (tree_memory's
+    best_mode_bytes over n_tri); None without them."""
+    b = tree_memory.best_mode_bytes(r)
+    n = r["n_tri"] if "n_tri" in r else None
+    return b / float(n) if b is not None and kr.present(n) and n else None
 
 
 def rows(df):

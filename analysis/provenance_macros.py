@@ -134,8 +134,7 @@ def generate(ctx):
                       ProvDirty=("", False),
                       ProvTiming=("no kd-tree runs", False))
         return macros
-    grouped = pv.groups(records, lambda p: (pv.code_key(p),
-                                            p and p.get("cpu_model")))
+    grouped = pv.groups(records, lambda p: (pv.code_key(p), pv.cpu_name(p)))
     dirty = any(p is not None and p.get("dirty") for p, _ in grouped)
     return {
         "ProvCommit": (_values(grouped, lambda p: (p.get("commit") or "unknown")[:12]), False),
@@ -143,7 +142,7 @@ def generate(ctx):
         "ProvSourceTree": (_values(grouped, lambda p: (p.get("source_tree") or "unknown")[:12]), False),
         "ProvDirty": (" (with uncommitted changes)" if dirty else "", False),
         "ProvBuild": (_values(grouped, build_text), True),
-        "ProvCPU": (_values(grouped, lambda p: p.get("cpu_model") or "unknown CPU"), False),
+        "ProvCPU": (_values(grouped, lambda p: pv.cpu_name(p) or "unknown CPU"), False),
         "ProvCores": (_values(grouped, lambda p: p.get("cores") or "unknown"), False),
         "ProvTiming": (timing_text(records), False),
         "ProvRecords": (latex.fmt_int(len(records)), False),

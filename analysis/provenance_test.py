@@ -77,6 +77,24 @@ class CheckTest(unittest.TestCase):
         groups = pv.check_one_provenance(records, allow_mixed_cpus=True)
         self.assertEqual(pv.cpus(groups), ["Fixture CPU @ 1.00GHz", "Other CPU"])
 
+    def test_one_model_name_on_two_cpus_is_two_cpus(self):
+        # A virtual machine's model name covers several CPUs: its family,
+        # model, stepping and caches tell them apart.
+        ice = dict(cpu_id="GenuineIntel family 6 model 106 stepping 6",
+                   cpu_caches="L2 1280K, L3 49152K")
+        sapphire = dict(cpu_id="GenuineIntel family 6 model 143 stepping 8",
+                        cpu_caches="L2 2048K, L3 107520K")
+        with self.assertRaisesRegex(pv.MixedCpuError, "model 106.*model 143"):
+            pv.check_one_provenance([rec(**ice), rec("beta", **sapphire)])
+        self.assertEqual(len(pv.check_one_provenance([rec(**ice), rec("beta", **ice)])), 1)
+        # A record naming the model only may have come from either.
+        with self.assertRaises(pv.MixedCpuError):
+            pv.check_one_provenance([rec(**ice), rec("beta")])
+        self.assertEqual(pv.cpu_name(testdata.provenance(**ice)),
+                         "Fixture CPU @ 1.00GHz (GenuineIntel family 6 model 106 "
+                         "stepping 6; L2 1280K, L3 49152K)")
+        self.assertIsNone(pv.cpu_name(testdata.provenance(cpu_model=None)))
+
     def test_unoptimised_timings_are_refused(self):
         records = [rec(), rec("beta", "pruning", compilation_mode="fastbuild",
                               optimized=False, ndebug=False, timing_build=False)]

@@ -49,6 +49,25 @@ def record_per_triangle(r, column):
     return None
 
 
+def best_mode_bytes(r):
+    """The bytes our best mode (kd_bvh_packet) reads, from a render_bench
+    record (a dict or a frame's row): the BVH over the tree's leaves, its
+    nodes and its own leaf packets (bvh_bytes + bvh_packet_bytes, records
+    since session 47), or before those its nodes and the tree's nodes and
+    leaf packets (bvh_bytes + tree_bytes); None without the BVH's bytes
+    (records before 2026-12-07). The one rule: analysis/embree_structure.py
+    and experiments/bench_structure.py both take it."""
+    def get(column):
+        v = r[column] if column in r else None
+        return float(v) if kr.present(v) else None
+    bvh, own, tree = get("bvh_bytes"), get("bvh_packet_bytes"), get("tree_bytes")
+    if bvh is None:
+        return None
+    if own:
+        return bvh + own
+    return bvh + tree if tree is not None else None
+
+
 def per_triangle(df, preset, column):
     """{scene: column / n_tri} over the scenes with a record of `preset`."""
     out = {}

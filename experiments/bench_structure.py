@@ -7,6 +7,7 @@ helpers are bench_tables.py's.
 """
 import statistics
 
+from analysis import tree_memory  # the bytes our best mode reads: one rule
 from bench_tables import EMBREE_ALL, TRI_BVH_MODES
 from bench_tables import one_thread_by_size, per_round_ratio, tracing_runs
 
@@ -71,11 +72,8 @@ def triangle_bvh_summary(records):
         cells = [fmt(values[0]), fmt(values[1]), "%s, %s" % (fmt(values[2]), fmt(values[3])),
                  "%s, %s" % (fmt(values[4]), fmt(values[5]))]
         n = r["n_tri"]
-        # What kd_bvh_packet reads: the BVH's nodes and its own leaf packets
-        # (since session 47), before that the tree and the BVH's nodes.
-        ours = (r["bvh_bytes"] + r["bvh_packet_bytes"] if r.get("bvh_packet_bytes")
-                else r.get("tree_bytes", 0) + r.get("bvh_bytes", 0))
-        sizes = [ours, r.get("tri_bvh_bytes"), r.get("embree_bvh_bytes")]
+        sizes = [tree_memory.best_mode_bytes(r), r.get("tri_bvh_bytes"),
+                 r.get("embree_bvh_bytes")]
         cells.append(", ".join("-" if not b else "%.0f" % (b / n) for b in sizes))
         out.append("| %s | %s | %s |" % (r["scene"], format(n, ","), " | ".join(cells)))
     if len(out) == 2:

@@ -42,18 +42,58 @@ std::string Env(const char* name) {
   return v != nullptr ? v : "";
 }
 
-std::string CpuModel() {
-  std::ifstream cpu("/proc/cpuinfo");
+// The value of the first line of `cpuinfo` whose key is `key` ("" if none).
+std::string CpuInfoValue(const std::string& cpuinfo, const std::string& key) {
+  std::ifstream cpu(cpuinfo);
   std::string line;
   while (std::getline(cpu, line)) {
-    if (line.rfind("model name", 0) != 0) continue;
     const size_t colon = line.find(':');
-    if (colon == std::string::npos) break;
+    if (colon == std::string::npos) continue;
+    const size_t end = line.find_last_not_of(" \t", colon == 0 ? 0 : colon - 1);
+    if (end == std::string::npos || line.substr(0, end + 1) != key) continue;
     const size_t start = line.find_first_not_of(" \t", colon + 1);
     return start == std::string::npos ? "" : line.substr(start);
   }
   return "";
 }
+
+// The first line of a small file, without its newline ("" if unreadable).
+std::string FirstLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+}  // namespace
+
+std::string CpuIdentity(const std::string& cpuinfo) {
+  const std::string vendor = CpuInfoValue(cpuinfo, "vendor_id");
+  const std::string family = CpuInfoValue(cpuinfo, "cpu family");
+  const std::string model = CpuInfoValue(cpuinfo, "model");
+  const std::string stepping = CpuInfoValue(cpuinfo, "stepping");
+  if (family.empty() || model.empty()) return "";
+  std::string id = vendor.empty() ? "" : vendor + " ";
+  id += "family " + family + " model " + model;
+  if (!stepping.empty()) id += " stepping " + stepping;
+  return id;
+}
+
+std::string CpuCaches(const std::string& cache_dir) {
+  std::string out;
+  for (int i = 0; i < 16; ++i) {
+    const std::string dir = cache_dir + "/index" + std::to_string(i) + "/";
+    const std::string level = FirstLine(dir + "level");
+    const std::string size = FirstLine(dir + "size");
+    if (level.empty() || size.empty()) break;
+    const std::string type = FirstLine(dir + "type");
+    const std::string suffix = type == "Data" ? "d" : type == "Instruction" ? "i" : "";
+    out += (out.empty() ? "" : ", ") + ("L" + level + suffix + " " + size);
+  }
+  return out;
+}
+
+namespace {
 
 int Cores() {
   cpu_set_t set;
@@ -133,7 +173,9 @@ Provenance CollectProvenance(const std::string& repo_root) {
   p.timing_build = p.compilation_mode == "opt" && p.optimized && p.ndebug;
   p.compiler = __VERSION__;
   SetCodeIdentity(repo_root, &p);
-  p.cpu_model = CpuModel();
+  p.cpu_model = CpuInfoValue("/proc/cpuinfo", "model name");
+  p.cpu_id = CpuIdentity("/proc/cpuinfo");
+  p.cpu_caches = CpuCaches("/sys/devices/system/cpu/cpu0/cache");
   p.cores = Cores();
   p.timestamp_utc = NowUtc();
   return p;
@@ -152,6 +194,8 @@ nlohmann::ordered_json Provenance::ToJson() const {
           {"timing_build", timing_build},
           {"compiler", compiler},
           {"cpu_model", OrNull(cpu_model)},
+          {"cpu_id", OrNull(cpu_id)},
+          {"cpu_caches", OrNull(cpu_caches)},
           {"cores", cores},
           {"timing_lock", OrNull(timing_lock)},
           {"timed_beside", timing_lock.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(0)},

@@ -24,6 +24,12 @@ struct Provenance {
   bool timing_build = false;     // opt && optimized && ndebug: its timings may be shown
   std::string compiler;          // __VERSION__
   std::string cpu_model;         // /proc/cpuinfo "model name"; "" when unknown
+  // What tells two CPUs of one model name apart (a virtual machine's name,
+  // "Intel(R) Xeon(R) Processor @ 2.80GHz", covers several generations):
+  // CpuIdentity's family, model and stepping and CpuCaches' sizes; "" when
+  // unknown.
+  std::string cpu_id;
+  std::string cpu_caches;
   int cores = 0;                 // CPUs this process may run on
   std::string timing_lock;       // the TimingLock its timed steps held; "" = none
   std::string timestamp_utc;     // ISO 8601, when collected
@@ -33,6 +39,14 @@ struct Provenance {
   // exclusively, other work shared), unknown (null) without it.
   nlohmann::ordered_json ToJson() const;
 };
+
+// "GenuineIntel family 6 model 106 stepping 6" from a /proc/cpuinfo (its
+// first processor); "" without a family and model.
+std::string CpuIdentity(const std::string& cpuinfo);
+
+// "L1d 48K, L1i 32K, L2 1280K, L3 49152K" from a CPU's sysfs cache
+// directory (/sys/devices/system/cpu/cpu0/cache); "" when unreadable.
+std::string CpuCaches(const std::string& cache_dir);
 
 // Collects it: the code identity is $KDTREE_SOURCE_ID when set (the line of
 // cc/base/source_id.sh that a runner pinned when it built the tools, so a

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include "gtest/gtest.h"
@@ -29,6 +30,45 @@ TEST(Provenance, KnowsTheCompileModeAndHonoursOverrides) {
   EXPECT_EQ(j["timing_build"], p.compilation_mode == "opt" && p.optimized && p.ndebug);
   unsetenv("KDTREE_GIT_COMMIT");
   unsetenv("KDTREE_SOURCE_TREE");
+}
+
+// A file under TEST_TMPDIR with `text`; its path.
+std::string TempFile(const std::string& name, const std::string& text) {
+  const std::string path = std::string(std::getenv("TEST_TMPDIR")) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Provenance, TheCpuIsNamedByFamilyModelAndStepping) {
+  const std::string cpuinfo = TempFile(
+      "cpuinfo",
+      "processor\t: 0\nvendor_id\t: GenuineIntel\ncpu family\t: 6\nmodel\t\t: 106\n"
+      "model name\t: Intel(R) Xeon(R) Processor @ 2.80GHz\nstepping\t: 6\n\n"
+      "processor\t: 1\nvendor_id\t: GenuineIntel\ncpu family\t: 6\nmodel\t\t: 143\n");
+  EXPECT_EQ(CpuIdentity(cpuinfo), "GenuineIntel family 6 model 106 stepping 6");
+  EXPECT_EQ(CpuIdentity(TempFile("no_model", "vendor_id\t: GenuineIntel\n")), "");
+  EXPECT_EQ(CpuIdentity("/nonexistent/cpuinfo"), "");
+}
+
+TEST(Provenance, TheCachesAreListedByLevelAndType) {
+  const std::string root = std::string(std::getenv("TEST_TMPDIR")) + "/cache";
+  const char* rows[][3] = {{"1", "Data", "48K"}, {"1", "Instruction", "32K"},
+                           {"2", "Unified", "1280K"}, {"3", "Unified", "49152K"}};
+  for (int i = 0; i < 4; ++i) {
+    const std::string dir = root + "/index" + std::to_string(i);
+    ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
+    std::ofstream(dir + "/level") << rows[i][0] << "\n";
+    std::ofstream(dir + "/type") << rows[i][1] << "\n";
+    std::ofstream(dir + "/size") << rows[i][2] << "\n";
+  }
+  EXPECT_EQ(CpuCaches(root), "L1d 48K, L1i 32K, L2 1280K, L3 49152K");
+  EXPECT_EQ(CpuCaches("/nonexistent/cache"), "");
+}
+
+TEST(Provenance, RecordsTheCpusIdentity) {
+  const nlohmann::ordered_json j = CollectProvenance(".").ToJson();
+  EXPECT_TRUE(j.contains("cpu_id"));
+  EXPECT_TRUE(j.contains("cpu_caches"));
 }
 
 TEST(Provenance, APinnedIdentityIsTheRecordsCode) {

@@ -74,7 +74,7 @@ def check_provenance(rec, what):
     prov = rec.get("provenance")
     check(isinstance(prov, dict), what + ": no provenance")
     for k in ["commit", "dirty", "source_tree", "compilation_mode", "optimized", "ndebug",
-              "timing_build", "compiler", "cpu_model", "cores", "timing_lock", "timed_beside"]:
+              "timing_build", "compiler", "cpu_model", "cpu_id", "cpu_caches", "cores", "timing_lock", "timed_beside"]:
         check(k in prov, "%s: provenance has no %s" % (what, k))
     check(prov["commit"] == "0123456789abcdef0123456789abcdef01234567", what + ": commit")
     check(prov["timing_lock"].endswith("timing.lock") and prov["timed_beside"] == 0,

@@ -339,20 +339,12 @@ namespace {
 // 0.949-0.987; the control (the same code on both) camera 0.987-1.003.
 uint32_t TraceBvhPacket(const LeafBvh& bvh, const Ray* rays, int n, const uint32_t* origins,
                         bool any_hit, Hit* hits, PacketCounters* counters) {
-  packet_internal::PacketRays p;
-  packet_internal::PreparePacket(bvh.leaves, rays, n, origins, &p);
-  if (counters != nullptr) {
-    counters->lanes.rays += static_cast<uint64_t>(n);
-    counters->packets += p.live != 0;
-  }
-  uint32_t found = 0;
-  for (uint32_t rest = p.live; rest != 0;) {
-    const packet_internal::Group g = packet_internal::NextGroup(p, &rest);
-    if (counters != nullptr) ++counters->groups;
-    found |= HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(bvh, p, g, any_hit, hits,
-                                                                      counters);
-  }
-  return found;
+  return packet_internal::TracePacketGroups(
+      bvh.leaves, rays, n, origins, counters,
+      [&](const packet_internal::PacketRays& p, const packet_internal::Group& g) {
+        return HWY_DYNAMIC_DISPATCH(packet_internal::TraceBvhGroupImpl)(bvh, p, g, any_hit, hits,
+                                                                        counters);
+      });
 }
 
 }  // namespace

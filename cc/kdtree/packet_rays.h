@@ -9,11 +9,10 @@
 
 #include "cc/geometry/ray.h"
 #include "cc/geometry/watertight.h"
+#include "cc/kdtree/ray_packet.h"
 #include "cc/kdtree/tree.h"
 
 namespace kdtree {
-
-struct PacketCounters;  // ray_packet.h
 
 namespace packet_internal {
 
@@ -131,6 +130,21 @@ void PreparePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* o
 // lowest), taken out of *rest; *rest must not be 0.
 Group NextGroup(const PacketRays& p, uint32_t* rest);
 
+// The packet's rays set up (PreparePacket) and traced group by group
+// (NextGroup), each group by trace(p, g), which returns its lanes with a
+// hit; returns the union. Counts the rays, the packets that reach the tree
+// and the groups in `counters` (may be null). The kd-tree's packets
+// (ray_packet.cc) and the BVH's (leaf_bvh_packet_kernel.cc) differ only in
+// `trace`. Always inlined, so that each caller compiles as if the loop were
+// written there (a first version, a plain template, was compiled as a
+// function of its own, and the best mode's renders seemed slower by a few
+// per cent; with the inlining the callers' machine code is the one they
+// had when each held its own copy of the loop).
+template <class TraceFn>
+inline __attribute__((always_inline)) uint32_t TracePacketGroups(
+    const KdTree& tree, const Ray* rays, int n, const uint32_t* origins, PacketCounters* counters,
+    TraceFn trace);
+
 // What a trace looks for: the closest hit (Intersect), or any hit (Occluded)
 // with a node's children taken front to back or from the rays' ends
 // (TraversalOptions::from_end).
@@ -150,6 +164,25 @@ const char* KernelTarget();
 // The Highway targets this machine can run the kernel on (for tests:
 // hwy::SetSupportedTargetsForTest(target) makes TraceGroup use one).
 std::vector<int64_t> KernelTargets();
+
+template <class TraceFn>
+inline __attribute__((always_inline)) uint32_t TracePacketGroups(
+    const KdTree& tree, const Ray* rays, int n, const uint32_t* origins, PacketCounters* counters,
+    TraceFn trace) {
+  PacketRays p;
+  PreparePacket(tree, rays, n, origins, &p);
+  if (counters != nullptr) {
+    counters->lanes.rays += static_cast<uint64_t>(n);
+    counters->packets += p.live != 0;
+  }
+  uint32_t found = 0;
+  for (uint32_t rest = p.live; rest != 0;) {
+    const Group g = NextGroup(p, &rest);
+    if (counters != nullptr) ++counters->groups;
+    found |= trace(p, g);
+  }
+  return found;
+}
 
 }  // namespace packet_internal
 }  // namespace kdtree

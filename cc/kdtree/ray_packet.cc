@@ -62,19 +62,10 @@ void SetLane(const RaySetup& s, int i, PacketRays* p) {
 // TraceBvhPacket): no packet of Hits to fill, copy and read back.
 uint32_t TracePacket(const KdTree& tree, const Ray* rays, int n, const uint32_t* origins,
                      packet_internal::Search search, Hit* hits, PacketCounters* counters) {
-  PacketRays p;
-  packet_internal::PreparePacket(tree, rays, n, origins, &p);
-  if (counters != nullptr) {
-    counters->lanes.rays += static_cast<uint64_t>(n);
-    counters->packets += p.live != 0;
-  }
-  uint32_t found = 0;
-  for (uint32_t rest = p.live; rest != 0;) {
-    const Group g = packet_internal::NextGroup(p, &rest);
-    if (counters != nullptr) ++counters->groups;
-    found |= packet_internal::TraceGroup(tree, p, g, search, hits, counters);
-  }
-  return found;
+  return packet_internal::TracePacketGroups(
+      tree, rays, n, origins, counters, [&](const PacketRays& p, const Group& g) {
+        return packet_internal::TraceGroup(tree, p, g, search, hits, counters);
+      });
 }
 
 TraversalCounters* LaneCounters(PacketCounters* counters) {
