@@ -13,12 +13,14 @@ spread.
         --scenes bunny,city2 --out out/ab.jsonl [--repeats 7] [--run]
 
 With --run it first runs render_bench once per scene (one thread, sah-packet,
-Embree off, only the two tracers, with the replays so that the passes'
-tracing time alone is known), appending to --out; without, it reads --out.
-Per scene it prints the median over the rounds of the variant's time over
-the base's, with the min..max: whole renders (T_R), and each pass (camera,
-shadow) by its tracing time alone (the replay of the mode subtracted) where
-the records have it, else by the pass's time. Below 1: the variant is faster.
+Embree off, only the two tracers; with --alone also the replays), appending
+to --out; without, it reads --out. Per scene it prints the median over the
+rounds of the variant's time over the base's, with the min..max: whole
+renders (T_R) and each pass (camera, shadow), as the comments quote them;
+with --alone each pass by its tracing time alone (the replay of its mode
+subtracted, round by round), which a change moves further but which is
+noisier where the renderer's own work is most of a pass. Below 1: the
+variant is faster.
 """
 
 import argparse
@@ -35,34 +37,31 @@ COLUMNS = (("T_R", "T_R_runs"), ("camera", "primary_s_runs"), ("shadow", "second
 
 
 def pass_runs(key):
-    """A runs_of for per_round_ratio: the tracing time alone under `key`
-    when the record has the replays, else the pass's own times."""
-    alone = tracing_runs(key)
-
-    def runs_of(tracers, name):
-        return alone(tracers, name) or tracers.get(name, {}).get(key)
-    return runs_of
+    """A runs_of for per_round_ratio: a tracer's times under `key`."""
+    return lambda tracers, name: tracers.get(name, {}).get(key)
 
 
-def pair(record, base, variant):
-    """{column: (median, min, max) of variant / base per round, or None}."""
+def pair(record, base, variant, alone=False):
+    """{column: (median, min, max) of variant / base per round, or None};
+    alone: each pass's tracing time alone (None without the replays)."""
     t = record.get("tracers", {})
     out = {}
     for label, key in COLUMNS:
-        runs_of = t_r_runs if key == "T_R_runs" else pass_runs(key)
+        runs_of = (t_r_runs if key == "T_R_runs" else
+                   tracing_runs(key) if alone else pass_runs(key))
         # per_round_ratio: per round, its first group's time over its second's.
         r = per_round_ratio(t, (variant,), (base,), runs_of)
         out[label] = None if r is None else (r[0], r[1], r[2])
     return out
 
 
-def lines(records, base, variant):
+def lines(records, base, variant, alone=False):
     out = []
     for r in records:
         if base not in r.get("tracers", {}) or variant not in r.get("tracers", {}):
             continue
         cells = []
-        for label, v in pair(r, base, variant).items():
+        for label, v in pair(r, base, variant, alone).items():
             cells.append("%s -" % label if v is None else
                          "%s %.3f [%.3f..%.3f]" % (label, v[0], v[1], v[2]))
         mismatches = r.get("validation", {}).get("variants_vs_kd_mismatches", {})
@@ -80,7 +79,8 @@ def run(args):
         subprocess.run([binary, "--repo", ROOT, "--scenes", scene, "--preset", args.preset,
                         "--threads", "1", "--repeats", str(args.repeats), "--warmup", "1",
                         "--variants", "%s,%s" % (args.base, args.variant), "--embree", "off",
-                        "--embree_robust=false", "--embree_packets=false", "--replay=true",
+                        "--embree_robust=false", "--embree_packets=false",
+                        "--replay=%s" % ("true" if args.alone else "false"),
                         "--out", args.out], check=True, stdout=subprocess.DEVNULL)
 
 
@@ -93,13 +93,16 @@ def main(argv=None):
     p.add_argument("--scenes", default="bunny", help="comma-separated, with --run")
     p.add_argument("--repeats", type=int, default=7, help="paired rounds, with --run")
     p.add_argument("--preset", default="sah-packet")
+    p.add_argument("--alone", action="store_true",
+                   help="each pass by its tracing time alone (render_bench --replay)")
     p.add_argument("--render_bench", help="binary (default: the --config=opt build's)")
     args = p.parse_args(argv)
     if args.run:
         run(args)
     with open(args.out, encoding="utf-8") as f:
         records = [json.loads(line) for line in f if line.strip()]
-    print("\n".join(lines(records, args.base, args.variant)) or "no record has both tracers")
+    print("\n".join(lines(records, args.base, args.variant, args.alone))
+          or "no record has both tracers")
     return 0
 
 
