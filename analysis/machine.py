@@ -1,7 +1,9 @@
 """Macros describing where the results were measured (results/machine.json,
 written by experiments/run_scenes.py)."""
 
+from analysis import kdtree_results as kr
 from analysis import latex
+from analysis import provenance as pv
 
 
 def macros(machine):
@@ -23,9 +25,26 @@ def macros(machine):
     }
 
 
+def records_cpu(records, model):
+    """The CPU in full (provenance.cpu_name: the model name with its family,
+    model, stepping and caches) when every record that names one names the
+    same and it is the machine's `model`; else None. machine.json has the
+    model name only, which a virtual machine shares with other CPUs."""
+    names = {pv.cpu_name(pv.of(r)) for r in records} - {None}
+    if len(names) != 1:
+        return None
+    name = names.pop()
+    return name if model and name.startswith(model) else None
+
+
 def generate(ctx):
     machine = ctx.machine
     if not machine:
         raise RuntimeError("no %s/machine.json: run experiments/run_scenes.py "
                            "first" % ctx.results_dir)
-    return macros(machine)
+    out = macros(machine)
+    cpu = records_cpu(kr.latest(ctx.results(kr.KDTREE_FILE)).values(),
+                      machine.get("cpu_model"))
+    if cpu:
+        out["MachineCPU"] = (cpu, False)
+    return out

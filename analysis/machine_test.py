@@ -1,0 +1,31 @@
+"""machine: the CPU the report names, in full where the records say it."""
+import unittest
+
+from analysis import machine
+from analysis import testdata
+
+MODEL = "Fixture CPU @ 1.00GHz"
+FULL = dict(cpu_id="GenuineIntel family 6 model 106 stepping 6", cpu_caches="L2 1280K")
+
+
+def rec(scene, **prov):
+    return testdata.kdrt_record(scene, "clipping", provenance=testdata.provenance(**prov))
+
+
+class RecordsCpuTest(unittest.TestCase):
+    def test_the_records_name_it_in_full(self):
+        self.assertEqual(machine.records_cpu([rec("a", **FULL), rec("b", **FULL)], MODEL),
+                         MODEL + " (GenuineIntel family 6 model 106 stepping 6; L2 1280K)")
+
+    def test_two_cpus_or_another_model_leave_the_machine_name(self):
+        other = dict(FULL, cpu_id="GenuineIntel family 6 model 143 stepping 8")
+        self.assertIsNone(machine.records_cpu([rec("a", **FULL), rec("b", **other)], MODEL))
+        self.assertIsNone(machine.records_cpu([rec("a", **FULL)], "Another CPU"))
+        self.assertIsNone(machine.records_cpu([], MODEL))
+
+    def test_older_records_give_the_model_name(self):
+        self.assertEqual(machine.records_cpu([rec("a")], MODEL), MODEL)
+
+
+if __name__ == "__main__":
+    unittest.main()
