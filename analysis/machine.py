@@ -26,15 +26,16 @@ def macros(machine):
 
 
 def records_cpu(records, model):
-    """The CPU in full (provenance.cpu_name: the model name with its family,
-    model, stepping and caches) when every record that names one names the
-    same and it is the machine's `model`; else None. machine.json has the
-    model name only, which a virtual machine shares with other CPUs."""
+    """What the records add to the machine's model name `model`: " (family,
+    model, stepping; caches)" (provenance.cpu_name less the model name) when
+    every record that names a CPU names the same one, of that model; else
+    "". machine.json has the model name only, which a virtual machine shares
+    with other CPUs."""
     names = {pv.cpu_name(pv.of(r)) for r in records} - {None}
-    if len(names) != 1:
-        return None
+    if len(names) != 1 or not model:
+        return ""
     name = names.pop()
-    return name if model and name.startswith(model) else None
+    return name[len(model):] if name.startswith(model) else ""
 
 
 def generate(ctx):
@@ -43,8 +44,6 @@ def generate(ctx):
         raise RuntimeError("no %s/machine.json: run experiments/run_scenes.py "
                            "first" % ctx.results_dir)
     out = macros(machine)
-    cpu = records_cpu(kr.latest(ctx.results(kr.KDTREE_FILE)).values(),
-                      machine.get("cpu_model"))
-    if cpu:
-        out["MachineCPU"] = (cpu, False)
+    out["MachineCPUDetail"] = (records_cpu(kr.latest(ctx.results(kr.KDTREE_FILE)).values(),
+                                           machine.get("cpu_model")), False)
     return out

@@ -19,7 +19,7 @@ from analysis import tree_memory
 
 # Every \newcommand that report/main.tex relies on must be generated.
 EXPECTED_MACROS = [
-    "MachineCPU", "MachineCores", "MachineMemory", "MachineOS",
+    "MachineCPU", "MachineCPUDetail", "MachineCores", "MachineMemory", "MachineOS",
     "MachineCompiler", "GitCommit", "GitCommitFull", "GitDirty",
     "ResultsDate", "NumScenes", "NumScenesTried", "NumScenesFailed",
     "NumScenesWithExpected", "NumScenesMatchExpected", "TotalTriangles",
