@@ -34,7 +34,9 @@ def records_cpu(records, model):
     names = {pv.cpu_name(pv.of(r)) for r in records} - {None}
     if len(names) != 1 or not model:
         return ""
-    name = names.pop()
+    # machine.json's model name has its runs of spaces collapsed
+    # (run_scenes.cpu_model); the records' is /proc/cpuinfo's own.
+    name, model = " ".join(names.pop().split()), " ".join(model.split())
     return name[len(model):] if name.startswith(model) else ""
 
 

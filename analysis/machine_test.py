@@ -23,6 +23,13 @@ class RecordsCpuTest(unittest.TestCase):
         self.assertEqual(machine.records_cpu([rec("a", **FULL)], "Another CPU"), "")
         self.assertEqual(machine.records_cpu([], MODEL), "")
 
+    def test_runs_of_spaces_do_not_matter(self):
+        padded = "Intel(R) Xeon(R) CPU           X5650  @ 2.67GHz"
+        r = testdata.kdrt_record("a", "clipping",
+                                 provenance=testdata.provenance(cpu_model=padded, **FULL))
+        self.assertEqual(machine.records_cpu([r], "Intel(R) Xeon(R) CPU X5650 @ 2.67GHz"),
+                         " (GenuineIntel family 6 model 106 stepping 6; L2 1280K)")
+
     def test_older_records_add_nothing(self):
         self.assertEqual(machine.records_cpu([rec("a")], MODEL), "")
 

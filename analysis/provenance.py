@@ -9,7 +9,8 @@ whether the timed steps ran alone under the machine-wide timing lock. A record
 without it is of unknown provenance, which differs from every known one.
 
 Two records may share a table only when their code (source tree and
-compilation mode) and their CPU model are the same, and a table may show
+compilation mode) and their CPU (cpu_name: the model name with the family,
+model, stepping and caches where recorded) are the same, and a table may show
 timings only from binaries built for timing (timing_build). The checks raise
 errors that name the provenances and the make_all flag that overrides them:
 --allow_mixed_provenance, --allow_mixed_cpus, --allow_unoptimized_timings.
@@ -24,7 +25,7 @@ class ProvenanceError(ValueError):
 
 
 class MixedCpuError(ProvenanceError):
-    """Timings measured on different CPU models would share one table."""
+    """Timings measured on different CPUs (cpu_name) would share one table."""
 
 
 class UnoptimizedTimingError(ProvenanceError):
@@ -60,16 +61,18 @@ def code_key(prov):
 
 def cpu_name(prov):
     """The CPU a provenance names: its model name, with the family, model,
-    stepping and cache sizes (cpu_id, cpu_caches; records since 2026-12-07)
-    in parentheses when known. A virtual machine's model name alone
+    stepping and cache sizes (cpu_id, cpu_caches; records since 32f81fd)
+    in parentheses when known (the id alone when the model name is not). A virtual machine's model name alone
     ("Intel(R) Xeon(R) Processor @ 2.80GHz") covers several CPUs: the same
     code gave Embree's best mode over ours a median of 0.96 on one such
     machine and 0.87 on another (README, "Against Embree 3"), so records
     that name the CPU by model name only are not taken for the same CPU as
-    those that name it fully. None when the model name is unknown."""
-    if not prov or not prov.get("cpu_model"):
+    those that name it fully. None when the CPU is unknown."""
+    if not prov:
         return None
     known = [prov[k] for k in ("cpu_id", "cpu_caches") if prov.get(k)]
+    if not prov.get("cpu_model"):
+        return "; ".join(known) or None
     return prov["cpu_model"] + (" (%s)" % "; ".join(known) if known else "")
 
 
@@ -113,7 +116,7 @@ def check_one_provenance(records, allow_mixed=False, allow_mixed_cpus=False,
                          what="one table"):
     """Raises ProvenanceError when the records come from more than one code
     (source tree, compilation mode), MixedCpuError when from more than one
-    CPU model, unless allowed; returns [(provenance, [records])] of the
+    CPU (cpu_name), unless allowed; returns [(provenance, [records])] of the
     distinct provenances (code and CPU)."""
     records = list(records)
     by_code = groups(records, code_key)

@@ -94,6 +94,8 @@ class CheckTest(unittest.TestCase):
                          "Fixture CPU @ 1.00GHz (GenuineIntel family 6 model 106 "
                          "stepping 6; L2 1280K, L3 49152K)")
         self.assertIsNone(pv.cpu_name(testdata.provenance(cpu_model=None)))
+        self.assertEqual(pv.cpu_name(testdata.provenance(cpu_model=None, **ice)),
+                         "GenuineIntel family 6 model 106 stepping 6; L2 1280K, L3 49152K")
 
     def test_unoptimised_timings_are_refused(self):
         records = [rec(), rec("beta", "pruning", compilation_mode="fastbuild",

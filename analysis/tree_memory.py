@@ -55,15 +55,16 @@ def best_mode_bytes(r):
     nodes and its own leaf packets (bvh_bytes + bvh_packet_bytes, records
     since session 47), or before those its nodes and the tree's nodes and
     leaf packets (bvh_bytes + tree_bytes); None without the BVH's bytes
-    (records before 2026-12-07). The one rule: analysis/embree_structure.py
-    and experiments/bench_structure.py both take it."""
+    (records before 2026-12-07) or without either of the others. The one
+    rule: analysis/embree_structure.py and experiments/bench_structure.py
+    both take it (before 32f81fd each had its own copy)."""
     def get(column):
         v = r[column] if column in r else None
         return float(v) if kr.present(v) else None
     bvh, own, tree = get("bvh_bytes"), get("bvh_packet_bytes"), get("tree_bytes")
     if bvh is None:
         return None
-    if own:
+    if own is not None:
         return bvh + own
     return bvh + tree if tree is not None else None
 

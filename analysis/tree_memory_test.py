@@ -47,6 +47,21 @@ class TreeMemoryTest(testdata.KdtreeFixtureTest):
         self.assertIn("beta & 2,000 & 2.00 & 80 & 50 & 1.60", text)
         self.assertIn("gamma & 4,000 & 1.80 & 64 & --- & ---", text)
 
+    def test_the_bytes_the_best_mode_reads(self):
+        import pandas as pd
+        new = {"bvh_bytes": 100, "bvh_packet_bytes": 400, "tree_bytes": 900}
+        self.assertEqual(tree_memory.best_mode_bytes(new), 500.0)
+        self.assertEqual(tree_memory.best_mode_bytes(pd.Series(new)), 500.0)
+        # An empty BVH's packets are its bytes too, not a reason for the tree's.
+        self.assertEqual(tree_memory.best_mode_bytes(dict(new, bvh_packet_bytes=0)), 100.0)
+        # Before its own packets (no field, or NaN in a frame): its nodes and the tree.
+        old = {"bvh_bytes": 100, "tree_bytes": 900}
+        self.assertEqual(tree_memory.best_mode_bytes(old), 1000.0)
+        self.assertEqual(tree_memory.best_mode_bytes(
+            pd.Series(dict(old, bvh_packet_bytes=float("nan")))), 1000.0)
+        self.assertIsNone(tree_memory.best_mode_bytes({"tree_bytes": 900}))
+        self.assertIsNone(tree_memory.best_mode_bytes({"bvh_bytes": 100}))
+
     def test_no_records_of_a_preset_give_dashes(self):
         macros = tree_memory.generate(self.ctx)
         self.assertEqual(macros["TreeBytesFastScenes"][0], "0")

@@ -46,6 +46,10 @@ TEST(Provenance, TheCpuIsNamedByFamilyModelAndStepping) {
       "model name\t: Intel(R) Xeon(R) Processor @ 2.80GHz\nstepping\t: 6\n\n"
       "processor\t: 1\nvendor_id\t: GenuineIntel\ncpu family\t: 6\nmodel\t\t: 143\n");
   EXPECT_EQ(CpuIdentity(cpuinfo), "GenuineIntel family 6 model 106 stepping 6");
+  // "model name" first: "model" must match the key exactly, not a prefix.
+  EXPECT_EQ(CpuIdentity(TempFile("name_first", "model name\t: X @ 1GHz\ncpu family\t: 25\n"
+                                               "model\t\t: 17\n")),
+            "family 25 model 17");
   EXPECT_EQ(CpuIdentity(TempFile("no_model", "vendor_id\t: GenuineIntel\n")), "");
   EXPECT_EQ(CpuIdentity("/nonexistent/cpuinfo"), "");
 }
@@ -62,6 +66,14 @@ TEST(Provenance, TheCachesAreListedByLevelAndType) {
     std::ofstream(dir + "/size") << rows[i][2] << "\n";
   }
   EXPECT_EQ(CpuCaches(root), "L1d 48K, L1i 32K, L2 1280K, L3 49152K");
+  // A cache without a type file is named by its level alone; a gap ends the list.
+  const std::string odd = std::string(std::getenv("TEST_TMPDIR")) + "/odd_cache";
+  ASSERT_EQ(std::system(("mkdir -p " + odd + "/index0 " + odd + "/index2").c_str()), 0);
+  std::ofstream(odd + "/index0/level") << "2\n";
+  std::ofstream(odd + "/index0/size") << "1024K\n";
+  std::ofstream(odd + "/index2/level") << "3\n";
+  std::ofstream(odd + "/index2/size") << "8192K\n";
+  EXPECT_EQ(CpuCaches(odd), "L2 1024K");
   EXPECT_EQ(CpuCaches("/nonexistent/cache"), "");
 }
 
