@@ -45,14 +45,6 @@ MACROS = [p + s for p in ("EmbreeTriBest", "EmbreeTriSingle", "EmbreeTriKdBest")
 NOISE = 0.02
 
 
-def _kd_bytes(r):
-    """Bytes a triangle of all our best mode reads (tree_memory's
-    best_mode_bytes over n_tri); None without them."""
-    b = tree_memory.best_mode_bytes(r)
-    n = r["n_tri"] if "n_tri" in r else None
-    return b / float(n) if b is not None and kr.present(n) and n else None
-
-
 def rows(df):
     out = []
     for scene in kr.scenes_in_order(df):
@@ -66,7 +58,7 @@ def rows(df):
                     "kd_best": embree.ratio_cell(r, "best_ratio"), "tri_best": tri,
                     "kd_single": embree.ratio_cell(r, "single_ratio"),
                     "tri_single": embree.ratio_cell(r, "tri_single_ratio"),
-                    "kd_bytes": _kd_bytes(r),
+                    "kd_bytes": tree_memory.best_mode_bytes_per_triangle(r),
                     "tri_bytes": tree_memory.record_per_triangle(r, "tri_bytes"),
                     "embree_bytes": tree_memory.record_per_triangle(r, "embree_bvh_bytes")})
     return out

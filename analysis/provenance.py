@@ -125,7 +125,7 @@ def check_one_provenance(records, allow_mixed=False, allow_mixed_cpus=False,
             "%s would mix records of %d provenances: %s. Rerun them with one "
             "build of one source tree, or pass --allow_mixed_provenance"
             % (what, len(by_code), _describe(by_code, False)))
-    cpus = sorted({cpu_name(p) for p in map(of, records) if cpu_name(p)})
+    cpus = sorted({cpu_name(p) for p in map(of, records)} - {None})
     if len(cpus) > 1 and not allow_mixed_cpus:
         raise MixedCpuError(
             "%s: timings from %d different CPUs (%s) would be mixed; rerun "
@@ -179,4 +179,4 @@ def check_frame(ctx, df, what, timings=True):
 
 
 def cpus(grouped):
-    return sorted({cpu_name(p) for p, _ in grouped if cpu_name(p)})
+    return sorted({cpu_name(p) for p, _ in grouped} - {None})

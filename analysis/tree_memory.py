@@ -41,12 +41,23 @@ MACROS = ["TreeBytesTarget", "TreeBytesFastScenes", "TreeBytesFastMedian", "Tree
           "TreeBytesOverEmbreeMedian", "TreeBytesOverEmbreeMin", "TreeBytesOverEmbreeMax"]
 
 
+def _number(r, column):
+    """A record's column (a dict or a frame's row) as a float, or None when
+    it has none."""
+    v = r[column] if column in r else None
+    return float(v) if kr.present(v) else None
+
+
+def _per_triangle(r, v):
+    """v / the record's n_tri, or None without either."""
+    if v is not None and kr.present(r["n_tri"]) and r["n_tri"]:
+        return v / float(r["n_tri"])
+    return None
+
+
 def record_per_triangle(r, column):
     """A record's column / n_tri, or None without either."""
-    v = r[column] if column in r else None
-    if kr.present(v) and kr.present(r["n_tri"]) and r["n_tri"]:
-        return float(v) / float(r["n_tri"])
-    return None
+    return _per_triangle(r, _number(r, column))
 
 
 def best_mode_bytes(r):
@@ -58,15 +69,17 @@ def best_mode_bytes(r):
     (records before 2026-12-07) or without either of the others. The one
     rule: analysis/embree_structure.py and experiments/bench_structure.py
     both take it (before 32f81fd each had its own copy)."""
-    def get(column):
-        v = r[column] if column in r else None
-        return float(v) if kr.present(v) else None
-    bvh, own, tree = get("bvh_bytes"), get("bvh_packet_bytes"), get("tree_bytes")
+    bvh, own, tree = (_number(r, c) for c in ("bvh_bytes", "bvh_packet_bytes", "tree_bytes"))
     if bvh is None:
         return None
     if own is not None:
         return bvh + own
     return bvh + tree if tree is not None else None
+
+
+def best_mode_bytes_per_triangle(r):
+    """best_mode_bytes / n_tri, or None without either."""
+    return _per_triangle(r, best_mode_bytes(r))
 
 
 def per_triangle(df, preset, column):

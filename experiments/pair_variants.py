@@ -30,7 +30,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_tables import per_round_ratio, t_r_runs, tracing_runs  # noqa: E402
+from bench_tables import per_round_ratio, tracing_runs  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 COLUMNS = (("T_R", "T_R_runs"), ("camera", "primary_s_runs"), ("shadow", "secondary_s_runs"))
@@ -47,11 +47,9 @@ def pair(record, base, variant, alone=False):
     t = record.get("tracers", {})
     out = {}
     for label, key in COLUMNS:
-        runs_of = (t_r_runs if key == "T_R_runs" else
-                   tracing_runs(key) if alone else pass_runs(key))
+        runs_of = tracing_runs(key) if alone and key != "T_R_runs" else pass_runs(key)
         # per_round_ratio: per round, its first group's time over its second's.
-        r = per_round_ratio(t, (variant,), (base,), runs_of)
-        out[label] = None if r is None else (r[0], r[1], r[2])
+        out[label] = per_round_ratio(t, (variant,), (base,), runs_of)
     return out
 
 

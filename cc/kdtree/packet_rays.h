@@ -143,7 +143,21 @@ Group NextGroup(const PacketRays& p, uint32_t* rest);
 template <class TraceFn>
 inline __attribute__((always_inline)) uint32_t TracePacketGroups(
     const KdTree& tree, const Ray* rays, int n, const uint32_t* origins, PacketCounters* counters,
-    TraceFn trace);
+    TraceFn trace) {
+  PacketRays p;
+  PreparePacket(tree, rays, n, origins, &p);
+  if (counters != nullptr) {
+    counters->lanes.rays += static_cast<uint64_t>(n);
+    counters->packets += p.live != 0;
+  }
+  uint32_t found = 0;
+  for (uint32_t rest = p.live; rest != 0;) {
+    const Group g = NextGroup(p, &rest);
+    if (counters != nullptr) ++counters->groups;
+    found |= trace(p, g);
+  }
+  return found;
+}
 
 // What a trace looks for: the closest hit (Intersect), or any hit (Occluded)
 // with a node's children taken front to back or from the rays' ends
@@ -164,25 +178,6 @@ const char* KernelTarget();
 // The Highway targets this machine can run the kernel on (for tests:
 // hwy::SetSupportedTargetsForTest(target) makes TraceGroup use one).
 std::vector<int64_t> KernelTargets();
-
-template <class TraceFn>
-inline __attribute__((always_inline)) uint32_t TracePacketGroups(
-    const KdTree& tree, const Ray* rays, int n, const uint32_t* origins, PacketCounters* counters,
-    TraceFn trace) {
-  PacketRays p;
-  PreparePacket(tree, rays, n, origins, &p);
-  if (counters != nullptr) {
-    counters->lanes.rays += static_cast<uint64_t>(n);
-    counters->packets += p.live != 0;
-  }
-  uint32_t found = 0;
-  for (uint32_t rest = p.live; rest != 0;) {
-    const Group g = NextGroup(p, &rest);
-    if (counters != nullptr) ++counters->groups;
-    found |= trace(p, g);
-  }
-  return found;
-}
 
 }  // namespace packet_internal
 }  // namespace kdtree
