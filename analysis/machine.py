@@ -29,13 +29,14 @@ def records_cpu(records, model):
     """What the records add to the machine's model name `model`: " (family,
     model, stepping; caches)" (provenance.cpu_name less the model name) when
     every record that names a CPU names the same one, of that model; else
-    "". machine.json has the model name only, which a virtual machine shares
-    with other CPUs."""
+    "". The records say where the timings ran; machine.json, where
+    run_scenes.py last ran (an older machine.json has the model name only,
+    which a virtual machine shares with other CPUs)."""
     names = {pv.cpu_name(pv.of(r)) for r in records} - {None}
     if len(names) != 1 or not model:
         return ""
-    # machine.json's model name has its runs of spaces collapsed
-    # (run_scenes.cpu_model); the records' is /proc/cpuinfo's own.
+    # An older machine.json's model name has its runs of spaces collapsed;
+    # the records' is /proc/cpuinfo's own.
     name, model = " ".join(names.pop().split()), " ".join(model.split())
     return name[len(model):] if name.startswith(model) else ""
 

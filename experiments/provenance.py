@@ -6,6 +6,11 @@ included). The same script gives the C++ records their provenance
 key agree; pin() fixes it for a whole run ($KDTREE_SOURCE_ID). $KDTREE_GIT_COMMIT and $KDTREE_SOURCE_TREE replace the commit and the
 source tree when set, as in the C++ tools (tests, SLURM tasks).
 
+It also names the machine as the C++ records do (cc/base/provenance.cc
+CpuIdentity, CpuCaches; the same formats, checked on the same fixtures by
+provenance_test): machine() for the runners that write their own records
+(experiments/run_scenes.py's machine.json, cc/robust/robust_suite.py).
+
 Standard library only.
 """
 
@@ -65,3 +70,70 @@ def short(ident):
     if ident.get("dirty"):
         return "%s+dirty %s" % (commit, (ident.get("source_tree") or "?")[:12])
     return commit
+
+
+# --- the machine -------------------------------------------------------------
+
+def cpu_value(key, cpuinfo="/proc/cpuinfo"):
+    """The value of cpuinfo's first line whose key is exactly `key` ("model"
+    is not "model name"), None when there is none or the file is
+    unreadable (provenance.cc CpuInfoValue)."""
+    try:
+        with open(cpuinfo, encoding="utf-8", errors="replace") as f:
+            for line in f:
+                name, colon, value = line.partition(":")
+                if colon and name.rstrip(" \t") == key:
+                    return value.lstrip(" \t").rstrip("\n") or None
+    except OSError:
+        pass
+    return None
+
+
+def cpu_id(cpuinfo="/proc/cpuinfo"):
+    """"GenuineIntel family 6 model 106 stepping 6" (provenance.cc
+    CpuIdentity), None without a family and a model."""
+    def get(key):
+        return cpu_value(key, cpuinfo)
+    family, model = get("cpu family"), get("model")
+    if not family or not model:
+        return None
+    vendor, stepping = get("vendor_id"), get("stepping")
+    text = (vendor + " " if vendor else "") + "family %s model %s" % (family, model)
+    return text + (" stepping " + stepping if stepping else "")
+
+
+def cpu_caches(cache_dir="/sys/devices/system/cpu/cpu0/cache"):
+    """"L1d 48K, L1i 32K, L2 1280K, L3 49152K" from sysfs (provenance.cc
+    CpuCaches: index0, index1, ... up to the first without a level or a
+    size), None when there is none."""
+    def first_line(path):
+        try:
+            with open(path, encoding="utf-8") as f:
+                return f.readline().rstrip("\n")
+        except OSError:
+            return ""
+    parts = []
+    for i in range(16):
+        d = os.path.join(cache_dir, "index%d" % i)
+        level, size = first_line(os.path.join(d, "level")), first_line(os.path.join(d, "size"))
+        if not level or not size:
+            break
+        suffix = {"Data": "d", "Instruction": "i"}.get(first_line(os.path.join(d, "type")), "")
+        parts.append("L%s%s %s" % (level, suffix, size))
+    return ", ".join(parts) or None
+
+
+def cores():
+    """The CPUs this process may run on (the C++ records' "cores")."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 0
+
+
+def machine(cpuinfo="/proc/cpuinfo", cache_dir="/sys/devices/system/cpu/cpu0/cache"):
+    """The machine fields of a record's provenance, as the C++ records name
+    them: cpu_model (/proc/cpuinfo's "model name", as written), cpu_id,
+    cpu_caches and cores."""
+    return {"cpu_model": cpu_value("model name", cpuinfo), "cpu_id": cpu_id(cpuinfo),
+            "cpu_caches": cpu_caches(cache_dir), "cores": cores()}

@@ -34,6 +34,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "experiments"))
+import provenance  # noqa: E402  (the machine's fields, as the C++ records')
 
 DEFAULT_MANIFEST = os.path.join(ROOT, "data", "manifest.json")
 DEFAULT_INDEX = os.path.join(ROOT, "data", "cache", "scenes", "index.json")
@@ -152,19 +154,6 @@ def _run(cmd, cwd=ROOT):
     return out.stdout if out.returncode == 0 else None
 
 
-def cpu_model(cpuinfo="/proc/cpuinfo"):
-    try:
-        with open(cpuinfo, encoding="utf-8", errors="replace") as f:
-            for line in f:
-                key, _, value = line.partition(":")
-                if key.strip() in ("model name", "Model", "Processor") \
-                        and value.strip():
-                    return " ".join(value.split())
-    except OSError:
-        pass
-    return platform.processor() or platform.machine() or None
-
-
 def memory_gib(meminfo="/proc/meminfo"):
     try:
         with open(meminfo, encoding="utf-8") as f:
@@ -200,10 +189,13 @@ def machine_info(scene_info=None):
     compiler = _run(["g++", "--version"])
     commit = _run(["git", "rev-parse", "HEAD"])
     status = _run(["git", "status", "--porcelain", "--untracked-files=no"])
+    cpu = provenance.machine()  # the CPU as the C++ records name it
     info = {
         "recorded_at": datetime.datetime.now(datetime.timezone.utc)
         .isoformat(timespec="seconds"),
-        "cpu_model": cpu_model(),
+        "cpu_model": cpu["cpu_model"] or platform.processor() or platform.machine() or None,
+        "cpu_id": cpu["cpu_id"],
+        "cpu_caches": cpu["cpu_caches"],
         "cpu_count": os.cpu_count(),
         "memory_gib": memory_gib(),
         "os": os_name(),

@@ -43,8 +43,9 @@ after the suite, never beside it (its rounds are timed).
 "provenance" of the suite's records (the C++ case binaries do not collect it):
 commit, dirty and source_tree of the checkout (experiments/provenance.py's
 code_identity), compilation_mode (--compilation_mode,
-else guessed from --bin_dir's bazel-out/<cpu>-<mode>/ path), cpu_model, cores,
-timestamp_utc and collected_by.
+else guessed from --bin_dir's bazel-out/<cpu>-<mode>/ path), the machine as
+the C++ records name it (experiments/provenance.py's machine(): cpu_model,
+cpu_id, cpu_caches, cores), timestamp_utc and collected_by.
 """
 
 import argparse
@@ -82,14 +83,19 @@ COST_TARGET = "//cc/robust:robust_cost_bench"
 
 # --- provenance --------------------------------------------------------------
 
+def _provenance_module(repo_root="."):
+    """experiments/provenance.py of the checkout at repo_root (the one
+    implementation of the code identity and the machine's fields)."""
+    sys.path.insert(0, os.path.join(os.path.abspath(repo_root), "experiments"))
+    import provenance  # pylint: disable=import-outside-toplevel
+    return provenance
+
+
 def code_identity(repo_root="."):
     """{"commit", "dirty", "source_tree"} of the checkout at repo_root, by
-    experiments/provenance.py (the one implementation: it honours the identity
-    reproduce.sh pinned, $KDTREE_SOURCE_ID); None values when unknown."""
-    root = os.path.abspath(repo_root)
-    sys.path.insert(0, os.path.join(root, "experiments"))
-    import provenance  # pylint: disable=import-outside-toplevel
-    return dict(provenance.code_identity(root))
+    experiments/provenance.py (it honours the identity reproduce.sh pinned,
+    $KDTREE_SOURCE_ID); None values when unknown."""
+    return dict(_provenance_module(repo_root).code_identity(os.path.abspath(repo_root)))
 
 
 def guess_compilation_mode(bin_dir):
@@ -100,28 +106,13 @@ def guess_compilation_mode(bin_dir):
     return m.group(1) if m else "unknown"
 
 
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name") and ":" in line:
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return None
-
-
-def suite_provenance(identity, compilation_mode):
+def suite_provenance(identity, compilation_mode, repo_root="."):
     """The provenance the suite's records carry (see the module doc)."""
-    try:
-        cores = len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        cores = os.cpu_count() or 0
     return {"commit": identity.get("commit"),
             "dirty": bool(identity.get("dirty")),
             "source_tree": identity.get("source_tree"),
             "compilation_mode": compilation_mode,
-            "cpu_model": cpu_model(), "cores": cores,
+            **_provenance_module(repo_root).machine(),
             "timestamp_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ",
                                            time.gmtime()),
             "collected_by": "cc/robust/robust_suite.py"}
@@ -337,7 +328,7 @@ def main(argv=None, identity=None):
     if run:
         mode = args.compilation_mode or guess_compilation_mode(args.bin_dir)
         failed += run_suite(args.bin_dir, args.out,
-                            provenance=suite_provenance(identity, mode),
+                            provenance=suite_provenance(identity, mode, args.repo_root),
                             profile=args.profile, jobs=args.jobs,
                             ray_stride=args.ray_stride)
     if args.cost_bench and jobs:

@@ -91,7 +91,8 @@ class SuiteTest(unittest.TestCase):
         for rec in recs:
             self.assertEqual(rec["provenance"]["source_tree"], TREE)
             self.assertEqual(rec["provenance"]["compilation_mode"], "opt")
-            self.assertIn("cpu_model", rec["provenance"])
+            for key in ("cpu_model", "cpu_id", "cpu_caches", "cores"):
+                self.assertIn(key, rec["provenance"])  # as the C++ records name the CPU
         self.assertFalse(os.path.exists(out + ".new"))
 
     def test_suite_done_only_for_a_passing_run_of_the_same_code(self):
