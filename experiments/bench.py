@@ -47,15 +47,14 @@ sys.path.insert(0, ROOT)
 
 from analysis import provenance  # noqa: E402  (the one provenance check)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from provenance import opt_binary  # noqa: E402  (experiments/provenance.py)
 import bench_tables  # noqa: E402  (the Markdown tables)
 import bench_structure  # noqa: E402  (the tables of packet work and bytes)
 import bench_merge  # noqa: E402  (several processes' rounds pooled, --processes)
 import bench_warm  # noqa: E402  (the first and second traces, --twice)
 import bench_classes  # noqa: E402  (per class of ray, --classes)
 
-# The --config=opt binaries (bazel-bin follows the last build, which may be
-# a test build).
-BIN = os.path.join(ROOT, "bazel-out", "k8-opt", "bin", "cc", "bench")
+BIN = opt_binary("cc", "bench")  # the --config=opt binaries
 BUILD_PRESETS = ("binning-8-driving,binning-32,clipping-pruning,"
                  "sah-packet-binned,sah-packet-binned-cp")
 

@@ -31,6 +31,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_tables import per_round_ratio, tracing_runs  # noqa: E402
+from provenance import opt_binary  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 COLUMNS = (("T_R", "T_R_runs"), ("camera", "primary_s_runs"), ("shadow", "secondary_s_runs"))
@@ -70,9 +71,7 @@ def lines(records, base, variant, alone=False):
 
 
 def run(args):
-    # The --config=opt binary (bazel-bin follows the last build), as bench.py.
-    binary = args.render_bench or os.path.join(ROOT, "bazel-out", "k8-opt", "bin", "cc",
-                                                "bench", "render_bench")
+    binary = args.render_bench or opt_binary("cc", "bench", "render_bench")
     for scene in args.scenes.split(","):
         subprocess.run([binary, "--repo", ROOT, "--scenes", scene, "--preset", args.preset,
                         "--threads", "1", "--repeats", str(args.repeats), "--warmup", "1",

@@ -25,6 +25,14 @@ SCRIPT = os.path.join("cc", "base", "source_id.sh")
 PIN = "KDTREE_SOURCE_ID"
 
 
+def opt_binary(*parts, root=ROOT):
+    """The path of a tool built with --config=opt, the build the timings
+    need: bazel-out/k8-opt/bin/PARTS. Not bazel-bin, which follows whichever
+    configuration was built last (a test build, say). reproduce.sh asks
+    `bazel info --config=opt bazel-bin` for the same directory."""
+    return os.path.join(root, "bazel-out", "k8-opt", "bin", *parts)
+
+
 def pin(root=ROOT):
     """Pins the checkout's identity now (unless already pinned) for this
     process and the tools it starts; returns code_identity()."""

@@ -3,7 +3,7 @@
 every obtained scene of a profile, with //cc/tools:kdrt.
 
     /usr/bin/python3 experiments/run_matrix.py --profile quick \
-        --kdrt "$(bazel info -c opt bazel-bin)/cc/tools/kdrt" [--out out]
+        [--kdrt bazel-out/k8-opt/bin/cc/tools/kdrt] [--out out]
 
 Each (scene, variant) runs kdrt once (kdrt warms each tracer up untimed, then
 times --repeats rounds alternating the kd-tree and Embree and keeps the
@@ -358,8 +358,7 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--profile", default="quick")
     p.add_argument("--out", default=os.path.join(ROOT, "out"))
-    p.add_argument("--kdrt", default=os.path.join(ROOT, "bazel-bin", "cc",
-                                                  "tools", "kdrt"))
+    p.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"))
     p.add_argument("--manifest", default=run_scenes.DEFAULT_MANIFEST)
     p.add_argument("--index", default=run_scenes.DEFAULT_INDEX)
     p.add_argument("--scenes", default="", help="comma-separated subset")

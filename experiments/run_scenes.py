@@ -6,7 +6,7 @@ results and the machine they were measured on.
 
 Reads   data/manifest.json (which scenes belong to the profile) and
         data/cache/scenes/index.json (which of them data/fetch.py obtained),
-runs    bazel-bin/cc/tools/scene_info --mesh PATH --name NAME
+runs    bazel-out/k8-opt/bin/cc/tools/scene_info --mesh PATH --name NAME
             --cache_dir data/cache/soups
         for each scene (a failing scene is recorded, not fatal),
 appends one JSON line per scene to OUT/results/scenes.jsonl (append-only:
@@ -39,8 +39,7 @@ import provenance  # noqa: E402  (the machine's fields, as the C++ records')
 
 DEFAULT_MANIFEST = os.path.join(ROOT, "data", "manifest.json")
 DEFAULT_INDEX = os.path.join(ROOT, "data", "cache", "scenes", "index.json")
-DEFAULT_SCENE_INFO = os.path.join(ROOT, "bazel-bin", "cc", "tools",
-                                  "scene_info")
+DEFAULT_SCENE_INFO = provenance.opt_binary("cc", "tools", "scene_info")
 DEFAULT_SOUP_CACHE = os.path.join(ROOT, "data", "cache", "soups")
 
 SCENES_FILE = "scenes.jsonl"
