@@ -30,7 +30,8 @@ With --backend slurm the pending jobs go to a SLURM cluster as one
 writes its record to parts/i.json). The command waits for the array, then
 appends the records in job order, so the results file has the same records
 as a local run. A task without a record is reported with its log. Scene data
-must be fetched before (tasks never download): reproduce.sh does that.
+must be fetched before (tasks never download): reproduce.sh does that. The
+backend is experiments/matrix_slurm.py.
 
 Standard library only (tqdm for the progress bar and ETA when present).
 """
@@ -221,92 +222,6 @@ def append_record(results_path, rec):
         os.fsync(f.fileno())
 
 
-def run_task(jobs_file, index, kdrt, out):
-    """One SLURM array task: job `index` of jobs_file; the record goes to
-    parts/<index>.json beside it (written atomically), never to the shared
-    results file (the driver merges the parts in order)."""
-    with open(jobs_file, encoding="utf-8") as f:
-        spec = json.load(f)
-    job = spec["jobs"][index]
-    rec = run_job(kdrt, job["scene"], job["variant"], spec["settings"], out,
-                  spec["profile"])
-    parts = os.path.join(os.path.dirname(jobs_file), "parts")
-    os.makedirs(parts, exist_ok=True)
-    tmp = os.path.join(parts, "%d.json.tmp" % index)
-    with open(tmp, "w", encoding="utf-8") as f:
-        json.dump(rec, f)
-    os.rename(tmp, os.path.join(parts, "%d.json" % index))
-    return 0 if rec["ok"] else 1
-
-
-def run_slurm(pending, settings, args, results_path):
-    """Submits the pending jobs as one `sbatch --array`, waits for it, and
-    appends every task's record (or a failure naming its log) in job order.
-    Returns the number of failed tasks."""
-    stamp = time.strftime("%Y%m%d-%H%M%S")
-    work = os.path.abspath(os.path.join(args.out, "slurm", stamp))
-    os.makedirs(os.path.join(work, "logs"), exist_ok=True)
-    jobs_file = os.path.join(work, "jobs.json")
-    with open(jobs_file, "w", encoding="utf-8") as f:
-        json.dump({"profile": args.profile, "settings": settings,
-                   "jobs": [{"scene": s, "variant": v} for s, _, v in pending]},
-                  f, indent=1)
-    script = os.path.join(work, "task.sh")
-    with open(script, "w", encoding="utf-8") as f:
-        f.write("#!/bin/bash\n# One (scene, variant) of %s per array task.\n"
-                "exec /usr/bin/python3 %s --task %s --task_index "
-                "\"$SLURM_ARRAY_TASK_ID\" --kdrt %s --out %s\n"
-                % (jobs_file, os.path.abspath(__file__), jobs_file,
-                   os.path.abspath(args.kdrt), os.path.abspath(args.out)))
-    os.chmod(script, 0o755)
-    array = "0-%d" % (len(pending) - 1)
-    if args.max_parallel:
-        array += "%%%d" % args.max_parallel
-    cmd = ["sbatch", "--parsable", "--wait", "--array=" + array,
-           "--job-name=kdtree-" + args.profile,
-           "--output=" + os.path.join(work, "logs", "%A_%a.out"),
-           "--cpus-per-task=%d" % max(1, int(settings["threads"])),
-           "--chdir=" + ROOT]
-    for flag, value in (("--partition", args.partition), ("--time", args.time),
-                        ("--mem", args.mem)):
-        if value:
-            cmd.append("%s=%s" % (flag, value))
-    cmd.append(script)
-    print("run_matrix: %s" % " ".join(cmd), file=sys.stderr)
-    start = time.time()
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                          text=True)
-    job_id = proc.stdout.strip().split(";")[0]
-    print("run_matrix: array job %s finished in %.1f s (sbatch exit %d)"
-          % (job_id or "?", time.time() - start, proc.returncode),
-          file=sys.stderr)
-    if not job_id:
-        raise RuntimeError("sbatch failed: %s" % proc.stderr.strip())
-    failures = 0
-    for i, (scene, _, variant) in enumerate(pending):
-        part = os.path.join(work, "parts", "%d.json" % i)
-        log = os.path.join(work, "logs", "%s_%d.out" % (job_id, i))
-        if os.path.exists(part):
-            with open(part, encoding="utf-8") as f:
-                rec = json.load(f)
-        else:
-            tail = ""
-            if os.path.exists(log):
-                with open(log, encoding="utf-8", errors="replace") as f:
-                    tail = f.read()[-2000:]
-            rec = {"ok": False, "job": job_key(scene, variant, settings),
-                   "scene": scene, "preset": variant, "profile": args.profile,
-                   "returncode": None, "error": "no record from SLURM task "
-                   "%s_%d; log %s:\n%s" % (job_id, i, log, tail)}
-        rec["backend"] = "slurm"
-        append_record(results_path, rec)
-        if not rec["ok"]:
-            failures += 1
-            print("run_matrix: task %s_%d (%s/%s) failed; log: %s"
-                  % (job_id, i, scene, variant, log), file=sys.stderr)
-    return failures
-
-
 def run_concurrently(items, run, jobs_at_once):
     """Yields run(item) for every item, `jobs_at_once` at a time, each as it
     ends (so its record is appended at once). When the caller stops early or
@@ -381,7 +296,8 @@ def main(argv=None):
     p.add_argument("--task_index", type=int, help=argparse.SUPPRESS)
     args = p.parse_args(argv)
     if args.task:
-        return run_task(args.task, args.task_index, args.kdrt, args.out)
+        import matrix_slurm  # noqa: E402  (the SLURM backend; it imports this module)
+        return matrix_slurm.run_task(args.task, args.task_index, args.kdrt, args.out)
 
     matrix = load_matrix()
     if args.profile not in matrix["profiles"]:
@@ -424,7 +340,8 @@ def main(argv=None):
     if args.backend == "slurm":
         if not pending:
             return 0
-        failures = run_slurm(pending, settings, args, results_path)
+        import matrix_slurm  # noqa: E402  (the SLURM backend; it imports this module)
+        failures = matrix_slurm.run_slurm(pending, settings, args, results_path)
         print("run_matrix: %d SLURM tasks, %d failed" % (len(pending), failures),
               file=sys.stderr)
         return 0
