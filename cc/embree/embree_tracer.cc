@@ -196,9 +196,10 @@ void FillFixedRows16(int n, int* valid, RTCRay16* r) {
 }
 
 // The rays of lanes i < n in a packet of 16 as Embree's RTCRay16. Their rows
-// come from RayRows, the kd-tree's packet set-up's own load (wide loads and
-// permutes on 16-lane targets, ray_rows-inl.h), so that both tracers pay the
-// same for taking the renderer's rays.
+// come from RayRows, the kd-tree's packet set-up's own load (ray_rows-inl.h
+// LoadRayRows: wide loads and permutes on 16-lane targets, gathers
+// elsewhere), so that both tracers pay the same for taking the renderer's
+// rays.
 void FillRay16(const Ray* rays, int n, int* valid, RTCRay16* r) {
   float* const rows[8] = {r->org_x, r->org_y, r->org_z, r->dir_x,
                           r->dir_y, r->dir_z, r->tnear, r->tfar};

@@ -1,8 +1,9 @@
 // A packet of rays (ray.h: 8 floats each) turned into rows, one per float,
 // in vector registers, per Highway target (Highway's per-target include
-// guard): for the kd-tree's packet set-up (kdtree/ray_packet_setup.cc) and,
-// through RayRows (ray_rows.h), for Embree's ray packets (embree_tracer.cc),
-// so that both tracers load their rays the same way.
+// guard): LoadRayRows, for the kd-tree's packet set-up
+// (kdtree/ray_packet_setup.cc) and, through RayRows (ray_rows.h), for
+// Embree's ray packets (embree_tracer.cc), so that both tracers load their
+// rays the same way on every target.
 #if defined(KDTREE_CC_GEOMETRY_RAY_ROWS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef KDTREE_CC_GEOMETRY_RAY_ROWS_INL_H_
 #undef KDTREE_CC_GEOMETRY_RAY_ROWS_INL_H_
@@ -67,6 +68,30 @@ HWY_INLINE void TransposeRays(D d, const float* rays, int n, hn::Vec<D> (&c)[8])
 #else
 #undef KDTREE_HAS_TRANSPOSE_RAYS
 #endif
+
+// Rays [base, base + Lanes(d)) of rays [0, n <= 16) by component: c[k] lane j
+// is ray base + j's float k, 0 for base + j >= n. TransposeRays where the
+// target has it (16 lanes, base 0); elsewhere a gather per component, lanes
+// from n on reading ray 0 (nothing at all when n is 0) and then zeroed.
+template <class D>
+HWY_INLINE void LoadRayRows(D d, const float* rays, int n, size_t base, hn::Vec<D> (&c)[8]) {
+#ifdef KDTREE_HAS_TRANSPOSE_RAYS
+  HWY_DASSERT(base == 0);
+  TransposeRays(d, rays, n, c);
+#else
+  if (n <= 0) {
+    for (int k = 0; k < 8; ++k) c[k] = hn::Zero(d);
+    return;
+  }
+  const hn::RebindToSigned<D> di;
+  const auto lane = hn::Iota(di, static_cast<int32_t>(base));
+  const auto in = hn::Lt(lane, hn::Set(di, n));
+  const auto index = hn::IfThenElseZero(in, hn::Mul(lane, hn::Set(di, 8)));
+  for (int k = 0; k < 8; ++k) {
+    c[k] = hn::IfThenElseZero(hn::RebindMask(d, in), hn::GatherIndex(d, rays + k, index));
+  }
+#endif
+}
 
 }  // namespace HWY_NAMESPACE
 }  // namespace kdtree

@@ -24,16 +24,12 @@ namespace HWY_NAMESPACE {
 void RayRowsImpl(const Ray* rays, int n, float* const rows[8]) {
   static_assert(sizeof(Ray) == 8 * sizeof(float), "a ray is 8 floats");
   const float* flat = reinterpret_cast<const float*>(rays);
-#ifdef KDTREE_HAS_TRANSPOSE_RAYS
   const hn::ScalableTag<float> d;
-  hn::Vec<decltype(d)> c[8];
-  TransposeRays(d, flat, n, c);
-  for (int k = 0; k < 8; ++k) hn::Store(c[k], d, rows[k]);
-#else
-  for (int k = 0; k < 8; ++k) {
-    for (int i = 0; i < 16; ++i) rows[k][i] = i < n ? flat[8 * i + k] : 0.0f;
+  for (size_t base = 0; base < 16; base += hn::Lanes(d)) {
+    hn::Vec<decltype(d)> c[8];
+    LoadRayRows(d, flat, n, base, c);
+    for (int k = 0; k < 8; ++k) hn::Store(c[k], d, rows[k] + base);
   }
-#endif
 }
 
 }  // namespace HWY_NAMESPACE

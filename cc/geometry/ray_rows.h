@@ -12,8 +12,9 @@ namespace kdtree {
 
 // rows[k][i] = float k of rays[i] (origin x, y, z, dir x, y, z, tmin, tmax)
 // for i < n <= 16, and 0 for n <= i < 16; each row 16 floats, 64-byte
-// aligned. On targets of 16 float lanes by ray_rows-inl.h's TransposeRays,
-// elsewhere one float at a time.
+// aligned. By ray_rows-inl.h's LoadRayRows, as the kd-tree's packets load
+// their rays: a transposing load on targets of 16 float lanes, gathers
+// elsewhere.
 void RayRows(const Ray* rays, int n, float* const rows[8]);
 
 // The Highway targets RayRows is compiled for that this CPU runs (its test

@@ -126,7 +126,7 @@ HWY_INLINE void SetUpFrameChunk(D d, size_t base, const ChunkRays<D>& r, PacketR
 // [0, n) (8 floats each: origin, dir, tmin, tmax), in vectors: stores their
 // components into p, directions sanitized (a component below the smallest
 // normal float becomes a zero of its sign); returns the lanes with a valid
-// ray (none from n on: those lanes hold zeros or ray 0 again) and
+// ray (none from n on: those lanes hold zeros) and
 // sets *zero to those with a zero direction component and *behind to those
 // with tmin >= 0.
 template <class D>
@@ -137,13 +137,7 @@ HWY_INLINE uint32_t LoadChunk(D d, const float* rays, int n, size_t base, Packet
   const auto lane = hn::Iota(di, static_cast<int32_t>(base));
   const auto in = hn::Lt(lane, hn::Set(di, n));
   V c[8];
-#ifdef KDTREE_HAS_TRANSPOSE_RAYS
-  HWY_DASSERT(base == 0);  // one chunk of 16 lanes
-  kdtree::HWY_NAMESPACE::TransposeRays(d, rays, n, c);
-#else
-  const auto index = hn::IfThenElseZero(in, hn::Mul(lane, hn::Set(di, 8)));
-  for (int k = 0; k < 8; ++k) c[k] = hn::GatherIndex(d, rays + k, index);
-#endif
+  kdtree::HWY_NAMESPACE::LoadRayRows(d, rays, n, base, c);
   const V tmin = c[6], tmax = c[7];
   auto valid = hn::And(hn::Le(tmin, tmax), hn::RebindMask(d, in));  // also false for NaN
   auto nonzero = hn::Lt(tmin, hn::Zero(d));  // all false
