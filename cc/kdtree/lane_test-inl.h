@@ -237,7 +237,13 @@ struct LaneHitVecs {
 // Both halves computed without the branches on an empty half and on no hit
 // (a simulated predictor counted them among the kernel's least predictable)
 // made the packet kernel 0.3-2 % slower (in-process A/B, six scenes,
-// 2026-12-06): not kept.
+// 2026-12-06): not kept. Nor the bounds skipped where they cannot decide (a
+// half with no lane in range left at once; the bound of a triangle across
+// the origin's depth only for lanes with such a triangle): though perf
+// charges a fifth of the camera packets' kernel samples to FinishLanes
+// (armadillo), camera pass 0.978-0.995 of the time on bunny, armadillo,
+// refined-elephant, city2 and lost-empire, the control 0.983-1.004
+// (pair_variants, 21 paired rounds, 2026-12-07).
 template <class D>
 HWY_INLINE void FinishLanes(D d, const Frames<D>& f, const LaneShear<D>& s, uint32_t lanes,
                             hn::Vec<D> t_max, LaneHits* out, LaneHitVecs<D>* vecs = nullptr) {
