@@ -26,10 +26,12 @@ PIN = "KDTREE_SOURCE_ID"
 
 
 def opt_binary(*parts, root=ROOT):
-    """The path of a tool built with --config=opt, the build the timings
-    need: bazel-out/k8-opt/bin/PARTS. Not bazel-bin, which follows whichever
-    configuration was built last (a test build, say). reproduce.sh asks
-    `bazel info --config=opt bazel-bin` for the same directory."""
+    """The path of a tool in the optimised build, the one the timings need:
+    bazel-out/k8-opt/bin/PARTS, where --config=opt builds (and -c opt, with
+    other flags: reproduce.sh builds with --config=opt and asks `bazel info
+    --config=opt bazel-bin` for this directory; k8: the tools are x86 only).
+    Not bazel-bin, which follows whichever configuration was built last (a
+    test build, say)."""
     return os.path.join(root, "bazel-out", "k8-opt", "bin", *parts)
 
 
@@ -87,7 +89,8 @@ def cpu_value(key, cpuinfo="/proc/cpuinfo"):
     is not "model name"), None when there is none or the file is
     unreadable (provenance.cc CpuInfoValue)."""
     try:
-        with open(cpuinfo, encoding="utf-8", errors="replace") as f:
+        # newline="\n": lines end where std::getline ends them.
+        with open(cpuinfo, encoding="utf-8", errors="replace", newline="\n") as f:
             for line in f:
                 name, colon, value = line.partition(":")
                 if colon and name.rstrip(" \t") == key:
@@ -116,7 +119,7 @@ def cpu_caches(cache_dir="/sys/devices/system/cpu/cpu0/cache"):
     size), None when there is none."""
     def first_line(path):
         try:
-            with open(path, encoding="utf-8") as f:
+            with open(path, encoding="utf-8", errors="replace", newline="\n") as f:
                 return f.readline().rstrip("\n")
         except OSError:
             return ""

@@ -13,7 +13,9 @@ import provenance  # noqa: E402
 
 class MachineTest(unittest.TestCase):
     def setUp(self):
-        self.tmp = tempfile.mkdtemp()
+        tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(tmp.cleanup)
+        self.tmp = tmp.name
 
     def file(self, name, text):
         path = os.path.join(self.tmp, name)
@@ -37,6 +39,13 @@ class MachineTest(unittest.TestCase):
             "family 25 model 17")
         self.assertIsNone(provenance.cpu_id(self.file("no_model", "vendor_id\t: GenuineIntel\n")))
         self.assertIsNone(provenance.cpu_id("/nonexistent/cpuinfo"))
+        # As CpuInfoValue: the first line with the key decides, even empty;
+        # the value keeps its trailing blanks; a key with leading blanks is
+        # another key.
+        odd = self.file("odd", "model name\t:\nmodel name\t: B\nx\t:  tail  \n model\t: 1\n")
+        self.assertIsNone(provenance.cpu_value("model name", odd))
+        self.assertEqual(provenance.cpu_value("x", odd), "tail  ")
+        self.assertIsNone(provenance.cpu_value("model", odd))
         self.assertIsNone(provenance.cpu_value("model name", "/nonexistent/cpuinfo"))
 
     def test_caches_listed_by_level_and_type(self):

@@ -353,4 +353,7 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    # matrix_slurm imports this module by name: let it find this one rather
+    # than load a second copy.
+    sys.modules.setdefault("run_matrix", sys.modules["__main__"])
     sys.exit(main())

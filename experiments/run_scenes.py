@@ -188,7 +188,9 @@ def machine_info(scene_info=None):
     compiler = _run(["g++", "--version"])
     commit = _run(["git", "rev-parse", "HEAD"])
     status = _run(["git", "status", "--porcelain", "--untracked-files=no"])
-    cpu = provenance.machine()  # the CPU as the C++ records name it
+    # The CPU as the C++ records name it; the model name falls back to
+    # Python's name for the platform where /proc/cpuinfo has none (ARM).
+    cpu = provenance.machine()
     info = {
         "recorded_at": datetime.datetime.now(datetime.timezone.utc)
         .isoformat(timespec="seconds"),

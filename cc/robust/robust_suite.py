@@ -8,9 +8,9 @@ same rays.
 
     P="--out out/results/robust.jsonl --cost_out out/results/robust_cost.jsonl --profile quick"
     T=$(/usr/bin/python3 cc/robust/robust_suite.py $P --print_targets)
-    [ -z "$T" ] || bazel build -c opt $T
+    [ -z "$T" ] || bazel build --config=opt $T
     /usr/bin/python3 cc/robust/robust_suite.py $P \\
-        --bin_dir "$(bazel info -c opt bazel-bin)/cc/robust" --compilation_mode opt
+        --bin_dir "$(bazel info --config=opt bazel-bin)/cc/robust" --compilation_mode opt
 
 (run from the repository root; experiments/reproduce.sh does this). Nothing
 is rebuilt or rerun that the results already hold for the same code:
@@ -50,6 +50,7 @@ cpu_id, cpu_caches, cores), timestamp_utc and collected_by.
 
 import argparse
 import concurrent.futures
+import importlib.util
 import json
 import os
 import re
@@ -83,19 +84,26 @@ COST_TARGET = "//cc/robust:robust_cost_bench"
 
 # --- provenance --------------------------------------------------------------
 
-def _provenance_module(repo_root="."):
-    """experiments/provenance.py of the checkout at repo_root (the one
-    implementation of the code identity and the machine's fields)."""
-    sys.path.insert(0, os.path.join(os.path.abspath(repo_root), "experiments"))
-    import provenance  # pylint: disable=import-outside-toplevel
-    return provenance
+def _load_provenance():
+    """experiments/provenance.py beside this file's checkout (in Bazel's
+    runfiles too: it is a data dependency), the one implementation of the code
+    identity and the machine's fields; loaded once, under its own name."""
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))), "experiments", "provenance.py")
+    spec = importlib.util.spec_from_file_location("experiments_provenance", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+PROVENANCE = _load_provenance()
 
 
 def code_identity(repo_root="."):
     """{"commit", "dirty", "source_tree"} of the checkout at repo_root, by
     experiments/provenance.py (it honours the identity reproduce.sh pinned,
     $KDTREE_SOURCE_ID); None values when unknown."""
-    return dict(_provenance_module(repo_root).code_identity(os.path.abspath(repo_root)))
+    return dict(PROVENANCE.code_identity(os.path.abspath(repo_root)))
 
 
 def guess_compilation_mode(bin_dir):
@@ -106,13 +114,13 @@ def guess_compilation_mode(bin_dir):
     return m.group(1) if m else "unknown"
 
 
-def suite_provenance(identity, compilation_mode, repo_root="."):
+def suite_provenance(identity, compilation_mode):
     """The provenance the suite's records carry (see the module doc)."""
     return {"commit": identity.get("commit"),
             "dirty": bool(identity.get("dirty")),
             "source_tree": identity.get("source_tree"),
             "compilation_mode": compilation_mode,
-            **_provenance_module(repo_root).machine(),
+            **PROVENANCE.machine(),
             "timestamp_utc": time.strftime("%Y-%m-%dT%H:%M:%SZ",
                                            time.gmtime()),
             "collected_by": "cc/robust/robust_suite.py"}
@@ -328,7 +336,7 @@ def main(argv=None, identity=None):
     if run:
         mode = args.compilation_mode or guess_compilation_mode(args.bin_dir)
         failed += run_suite(args.bin_dir, args.out,
-                            provenance=suite_provenance(identity, mode, args.repo_root),
+                            provenance=suite_provenance(identity, mode),
                             profile=args.profile, jobs=args.jobs,
                             ray_stride=args.ray_stride)
     if args.cost_bench and jobs:
