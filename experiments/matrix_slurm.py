@@ -25,7 +25,7 @@ def run_task(jobs_file, index, kdrt, out):
         spec = json.load(f)
     job = spec["jobs"][index]
     rec = run_matrix.run_job(kdrt, job["scene"], job["variant"], spec["settings"], out,
-                  spec["profile"])
+                             spec["profile"])
     parts = os.path.join(os.path.dirname(jobs_file), "parts")
     os.makedirs(parts, exist_ok=True)
     tmp = os.path.join(parts, "%d.json.tmp" % index)

@@ -7,9 +7,10 @@ key agree; pin() fixes it for a whole run ($KDTREE_SOURCE_ID). $KDTREE_GIT_COMMI
 source tree when set, as in the C++ tools (tests, SLURM tasks).
 
 It also names the machine as the C++ records do (cc/base/provenance.cc
-CpuIdentity, CpuCaches; the same formats, checked on the same fixtures by
-provenance_test): machine() for the runners that write their own records
-(experiments/run_scenes.py's machine.json, cc/robust/robust_suite.py).
+CpuIdentity, CpuCaches; the same formats, provenance_test checking the cases
+of cc/base/provenance_test.cc): machine() for the runners that write their
+own records (experiments/run_scenes.py's machine.json,
+cc/robust/robust_suite.py).
 
 Standard library only.
 """
