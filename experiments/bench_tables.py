@@ -230,9 +230,14 @@ TRI_BVH_MODES = ("tri_bvh", "tri_bvh_packet")
 SINGLE_TARGET, BEST_TARGET = 0.8, 1.0
 
 
-def t_r_runs(tracers, name):
-    """A tracer's render times, one per round in round order."""
-    return tracers.get(name, {}).get("T_R_runs")
+def key_runs(key="T_R_runs"):
+    """A runs_of for per_round_ratio: a tracer's times under `key`, one per
+    round in round order (T_R_runs: whole renders; primary_s_runs or
+    secondary_s_runs: one pass)."""
+    return lambda tracers, name: tracers.get(name, {}).get(key)
+
+
+t_r_runs = key_runs("T_R_runs")  # a tracer's render times
 
 
 def tracing_runs(key="T_R_runs"):

@@ -30,16 +30,11 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_tables import per_round_ratio, tracing_runs  # noqa: E402
+from bench_tables import key_runs, per_round_ratio, tracing_runs  # noqa: E402
 from provenance import opt_binary  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 COLUMNS = (("T_R", "T_R_runs"), ("camera", "primary_s_runs"), ("shadow", "secondary_s_runs"))
-
-
-def pass_runs(key):
-    """A runs_of for per_round_ratio: a tracer's times under `key`."""
-    return lambda tracers, name: tracers.get(name, {}).get(key)
 
 
 def pair(record, base, variant, alone=False):
@@ -48,7 +43,7 @@ def pair(record, base, variant, alone=False):
     t = record.get("tracers", {})
     out = {}
     for label, key in COLUMNS:
-        runs_of = tracing_runs(key) if alone and key != "T_R_runs" else pass_runs(key)
+        runs_of = tracing_runs(key) if alone and key != "T_R_runs" else key_runs(key)
         # per_round_ratio: per round, its first group's time over its second's.
         out[label] = per_round_ratio(t, (variant,), (base,), runs_of)
     return out
