@@ -22,14 +22,17 @@ struct Entry {
   float t_near;  // where the ray enters the child's box (closest hit: pruning)
 };
 
-// What the box test needs of the ray (slab_slots-inl.h RaySlots).
+// What the box test needs of the ray (slab_slots-inl.h RaySlots), from its
+// set-up: the reciprocals are the set-up's, not divided again (in-process
+// A/B against three divisions here, 21 paired rounds, six scenes,
+// 2026-12-07: T_R 0.987-1.000, within the noise).
 struct BoxRay {
-  explicit BoxRay(const Ray& ray) {
+  explicit BoxRay(const RaySetup& s) {
     for (int k = 0; k < 3; ++k) {
-      o[k] = hn::Set(DB(), ray.origin[k]);
-      inv[k] = hn::Set(DB(), 1.0f / ray.dir[k]);
-      near_row[k] = std::signbit(ray.dir[k]) ? 3 + k : k;
-      far_row[k] = std::signbit(ray.dir[k]) ? k : 3 + k;
+      o[k] = hn::Set(DB(), s.org[k]);
+      inv[k] = hn::Set(DB(), s.inv[k]);
+      near_row[k] = s.negative[k] ? 3 + k : k;
+      far_row[k] = s.negative[k] ? k : 3 + k;
     }
   }
   hn::Vec<DB> o[3], inv[3];
@@ -50,7 +53,7 @@ Hit TraceLeafBvh(const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
   best.t = ray.tmax;
   const float slack = setup.slack;
   const leaf_step::LeafRay<kMode> leaf_ray(ray, setup.wray, origin_tri);
-  const BoxRay box_ray(ray);
+  const BoxRay box_ray(setup);
   const float* soa = leaves.leaf_soa.data();
   const float* soa_end = soa + leaves.leaf_soa.size();
   const LeafBvhNode* nodes = bvh.nodes.data();
