@@ -8,6 +8,7 @@ import os
 import stat
 import tempfile
 import unittest
+from unittest import mock
 from contextlib import redirect_stdout, redirect_stderr
 
 from experiments import run_scenes
@@ -113,6 +114,18 @@ class ScenesRunnerTest(unittest.TestCase):
         self.run_profile()
         with open(os.path.join(self.out, "results", "machines.jsonl")) as f:
             self.assertEqual(len(f.read().splitlines()), 2)
+
+    def test_machine_names_the_code_as_the_records_do(self):
+        # provenance.code_identity: a pinned identity (as SLURM tasks have)
+        # is the one machine.json names.
+        pin = "%s true %s" % ("c" * 40, "d" * 40)
+        with mock.patch.dict(os.environ, {"KDTREE_SOURCE_ID": pin}):
+            self.run_profile()
+        with open(os.path.join(self.out, "results", "machine.json")) as f:
+            machine = json.load(f)
+        self.assertEqual(machine["git_commit"], "c" * 40)
+        self.assertTrue(machine["git_dirty"])
+        self.assertEqual(machine["source_tree"], "d" * 40)
 
     def test_resume_skips_done_retries_failed(self):
         self.run_profile()

@@ -2,7 +2,7 @@
 """Runs the accuracy-versus-time study of experiments/accuracy.json.
 
     /usr/bin/python3 experiments/run_accuracy.py --profile quick \
-        --kdrt bazel-out/k8-opt/bin/cc/tools/kdrt [--out out]
+        [--kdrt bazel-out/k8-opt/bin/cc/tools/kdrt] [--out out]
 
 For every scene of the profile and every step, kdrt builds and renders with
 --preset PRESET and an environment file holding the step's options (written
@@ -100,7 +100,7 @@ def run_one(kdrt, scene, step, profile, profile_name, out, source_tree=None):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--profile", default="quick")
-    parser.add_argument("--kdrt", required=True)
+    parser.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"))
     parser.add_argument("--out", default=os.path.join(ROOT, "out"))
     parser.add_argument("--study", default=STUDY)
     parser.add_argument("--manifest", default=run_scenes.DEFAULT_MANIFEST)

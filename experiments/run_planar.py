@@ -4,7 +4,9 @@ exactly in an integer plane, where split planes fall) built with each of the
 nine variants in the seed-compatible mode (its strict partition loses
 triangles that lie in a split plane) and in our default mode (loses none).
 
-    /usr/bin/python3 experiments/run_planar.py --kdrt PATH [--scene lost-empire]
+    /usr/bin/python3 experiments/run_planar.py [--kdrt PATH] [--scene lost-empire]
+
+--kdrt defaults to the --config=opt build's (provenance.opt_binary).
 
 Writes OUT/results/planar.jsonl (one kdrt record per variant and mode,
 append-only; a (scene, variant, mode) already recorded is not rerun), the
@@ -29,7 +31,7 @@ MODES = {"seed": "on", "default": "off"}
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--kdrt", required=True)
+    p.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"))
     p.add_argument("--scene", default="lost-empire")
     p.add_argument("--out", default=os.path.join(ROOT, "out"))
     args = p.parse_args(argv)

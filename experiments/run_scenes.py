@@ -186,8 +186,10 @@ def sha256_of(path):
 
 def machine_info(scene_info=None):
     compiler = _run(["g++", "--version"])
-    commit = _run(["git", "rev-parse", "HEAD"])
-    status = _run(["git", "status", "--porcelain", "--untracked-files=no"])
+    # The code as every record names it (cc/base/source_id.sh): untracked
+    # files count as changes, and a pinned identity (KDTREE_SOURCE_ID) is
+    # honoured.
+    code = provenance.code_identity(ROOT)
     # The CPU as the C++ records name it; the model name falls back to
     # Python's name for the platform where /proc/cpuinfo has none (ARM).
     cpu = provenance.machine()
@@ -202,8 +204,9 @@ def machine_info(scene_info=None):
         "os": os_name(),
         "compiler": compiler.splitlines()[0].strip() if compiler else None,
         "python": platform.python_version(),
-        "git_commit": commit.strip() if commit else None,
-        "git_dirty": bool(status.strip()) if status is not None else None,
+        "git_commit": code["commit"],
+        "git_dirty": code["dirty"] if code["commit"] else None,
+        "source_tree": code["source_tree"],
     }
     if scene_info and os.path.exists(scene_info):
         rel = os.path.relpath(scene_info, ROOT)
