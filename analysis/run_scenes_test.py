@@ -120,6 +120,8 @@ class ScenesRunnerTest(unittest.TestCase):
         # is the one machine.json names.
         pin = "%s true %s" % ("c" * 40, "d" * 40)
         with mock.patch.dict(os.environ, {"KDTREE_SOURCE_ID": pin}):
+            for override in ("KDTREE_GIT_COMMIT", "KDTREE_SOURCE_TREE"):
+                os.environ.pop(override, None)
             self.run_profile()
         with open(os.path.join(self.out, "results", "machine.json")) as f:
             machine = json.load(f)

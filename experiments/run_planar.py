@@ -6,7 +6,7 @@ triangles that lie in a split plane) and in our default mode (loses none).
 
     /usr/bin/python3 experiments/run_planar.py [--kdrt PATH] [--scene lost-empire]
 
---kdrt defaults to the --config=opt build's (provenance.opt_binary).
+--kdrt defaults to bazel-out/k8-opt/bin/cc/tools/kdrt, the --config=opt build's.
 
 Writes OUT/results/planar.jsonl (one kdrt record per variant and mode,
 append-only; a (scene, variant, mode) already recorded is not rerun), the
@@ -31,10 +31,14 @@ MODES = {"seed": "on", "default": "off"}
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"))
+    p.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"),
+                   help="kdrt binary (default: %(default)s, the --config=opt build's)")
     p.add_argument("--scene", default="lost-empire")
     p.add_argument("--out", default=os.path.join(ROOT, "out"))
     args = p.parse_args(argv)
+    if not os.path.exists(args.kdrt):
+        print("run_planar: no kdrt binary at %s" % args.kdrt, file=sys.stderr)
+        return 2
     results = os.path.join(args.out, "results")
     images = os.path.join(args.out, "images", "planar")
     os.makedirs(results, exist_ok=True)

@@ -205,7 +205,7 @@ def machine_info(scene_info=None):
         "compiler": compiler.splitlines()[0].strip() if compiler else None,
         "python": platform.python_version(),
         "git_commit": code["commit"],
-        "git_dirty": code["dirty"] if code["commit"] else None,
+        "git_dirty": code["dirty"] if code["source_tree"] else None,
         "source_tree": code["source_tree"],
     }
     if scene_info and os.path.exists(scene_info):

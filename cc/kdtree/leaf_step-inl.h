@@ -11,8 +11,8 @@
 // 1.06-1.07 on bunny, hairball-small, engine, fforest and armadillo, 1.006 on
 // city; the same code on both sides gave 0.99-1.02. The tests run both
 // (experiments/test.sh). Four packets a step (16 lanes on AVX-512, each
-// coordinate from four 128-bit loads) were within the noise or mixed on a
-// Zen 4 machine (an earlier session) and lost on an Ice Lake server (family
+// coordinate from four 128-bit loads) were within the noise on a Zen 4
+// machine (traversal.h, "Tried and not kept") and lost on an Ice Lake server (family
 // 6 model 106; 2026-12-07; kd_bvh, the four-packet step behind a scratch
 // switch in the same binary, pair_variants, 21 paired rounds; bunny,
 // armadillo, lost-empire, city2, teapots, plant-1m, courtyard-1m): renders

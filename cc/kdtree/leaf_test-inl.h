@@ -163,13 +163,13 @@ HWY_INLINE void ScalarTest(D d, const PacketRays& p, const Group& g, const float
 // little beside the cull's 4-wide pass. FinishLanes is not where the leaf's
 // time goes either: run twice on each of TestLeaf's calls, it added 0.4-0.75
 // ms to camera passes of 7.8-12.4 ms (city2, lost-empire, bunny; nothing
-// measurable on shadow passes or hairball-1m). Nor (pair_variants, 21
-// paired rounds, bunny, armadillo, lost-empire, city2, courtyard-1m,
-// hairball-1m; 2026-12-07) the step's rest (FinishLanes, the records, the
-// scalar tests) out of line, the shear computed again there, so that the
-// loop need not keep the shear (GCC stores a dozen of its vectors to the
-// stack on every step, for the rare path): camera pass 1.00-1.04 times as
-// long.
+// measurable on shadow passes or hairball-1m). Nor did moving the step's
+// rest (FinishLanes, the records, the scalar tests) out of line, the shear
+// computed again there, so that the loop need not keep the shear (GCC
+// stores a dozen of its vectors to the stack on every step, for the rare
+// path): kd_bvh_packet's camera pass 1.00-1.04 times as long, its shadow
+// pass 1.00-1.03 (pair_variants, 21 paired rounds, bunny, armadillo,
+// lost-empire, city2, courtyard-1m, hairball-1m; 2026-12-07).
 template <bool kAnyHit, class D>
 HWY_INLINE void TestLeaf(D d, const KdTree& tree, const PacketRays& p, const Frames<D>& f,
                          const Group& g, int base, uint32_t first, uint32_t* lanes,

@@ -13,16 +13,18 @@
 //
 // Tried and not kept (single rays, kd_bvh; 2026-12-07): each slab distance
 // as one fused multiply-subtract, box * inv - o * inv, with o * inv set up
-// once per ray and moved by 2^-21 of itself to cover its rounding (that
-// term is absolute, not relative to t), and the three maxima and minima as
-// a tree; for rays whose reciprocals and products are finite and nonzero,
-// the others as here. Shorter by a subtraction and a max on each node's
-// dependent chain, yet (pair_variants, the fused test behind a scratch
-// switch in the same binary, 21 paired rounds, seven scenes) camera pass
-// 0.976-1.028, the noise, and the shadow pass 1.31 times as long on
-// courtyard-1m and 1.67 on lost-empire: a shadow ray's direction is the
-// segment to the light, so o * inv is large against its t range [0, 1]
-// and the absolute widening lets it enter boxes beside its path.
+// once per ray and moved by 2^-21 of itself to cover its rounding (a
+// widening absolute in t, where the one below is relative to t), and the
+// three maxima and minima as a tree; rays with a reciprocal infinite or
+// zero, or o * inv infinite, took the test below. Shorter by a subtraction and a max
+// on each node's dependent chain, yet (pair_variants, the fused test
+// behind a scratch switch in the same binary, 21 paired rounds, seven
+// scenes) camera pass 0.976-1.028, the noise, and the shadow pass 1.31
+// times as long on courtyard-1m, 1.12 on city2 and 1.67 on lost-empire,
+// 0.99-1.04 on the others. Presumably the widening, which does not shrink
+// to zero at the ray's origin as the relative one does, lets a shadow ray
+// enter the flat boxes of the plane it leaves (leaf_bvh.h's padded boxes,
+// tried first, lost on lost-empire in the same way).
 #if defined(KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_
 #undef KDTREE_CC_KDTREE_SLAB_SLOTS_INL_H_
