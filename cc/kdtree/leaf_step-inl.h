@@ -12,11 +12,12 @@
 // city; the same code on both sides gave 0.99-1.02. The tests run both
 // (experiments/test.sh). Four packets a step (16 lanes on AVX-512, each
 // coordinate from four 128-bit loads) were within the noise on a Zen 4
-// machine (traversal.h, "Tried and not kept") and lost on an Ice Lake server (family
-// 6 model 106; 2026-12-07; kd_bvh, the four-packet step behind a scratch
-// switch in the same binary, pair_variants, 21 paired rounds; bunny,
-// armadillo, lost-empire, city2, teapots, plant-1m, courtyard-1m): renders
-// 1.14-1.19 times as long, camera pass 1.17-1.25, shadow pass 1.22-1.33.
+// machine (traversal.h, "Tried and not kept") and lost on an Ice Lake
+// server (family 6 model 106; 2026-12-07; kd_bvh, the four-packet step
+// behind a scratch switch in the same binary, pair_variants, 21 paired
+// rounds; bunny, armadillo, lost-empire, city2, teapots, plant-1m,
+// courtyard-1m): renders 1.14-1.19 times as long, camera pass 1.17-1.25,
+// shadow pass 1.22-1.33.
 //
 // The per-lane test is the packet kernel's (lane_test-inl.h) with the
 // packets' triangles in the lanes: the rejection, then the rest of the
