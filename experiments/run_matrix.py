@@ -118,17 +118,10 @@ def done_keys(results_path):
     an optimised build (provenance.timing_build: the analysis refuses the
     timings of any other, so such a job is not done)."""
     keys = set()
-    if not os.path.exists(results_path):
-        return keys
-    with open(results_path, encoding="utf-8") as f:
-        for line in f:
-            line = line.strip()
-            if not line:
-                continue
-            rec = json.loads(line)
-            prov = rec.get("provenance") or {}
-            if rec.get("ok") and prov.get("timing_build", True):
-                keys.add(tuple(rec["job"]))
+    for rec in run_scenes.read_records(results_path):
+        prov = rec.get("provenance") or {}
+        if rec.get("ok") and prov.get("timing_build", True):
+            keys.add(tuple(rec["job"]))
     return keys
 
 
@@ -215,11 +208,9 @@ def run_job(kdrt, scene, variant, settings, out, profile):
     return rec
 
 
-def append_record(results_path, rec):
-    with open(results_path, "a", encoding="utf-8") as f:
-        f.write(json.dumps(rec) + "\n")
-        f.flush()
-        os.fsync(f.fileno())
+# Every runner appends its records with run_scenes' appender (a line,
+# flushed and synced) and resumes from run_scenes' reader (done_keys).
+append_record = run_scenes.append_record
 
 
 def run_concurrently(items, run, jobs_at_once):

@@ -1,13 +1,14 @@
 """run_matrix.py and compare_results.py with a fake kdrt (a script that
 writes a record the way kdrt does), locally and in SLURM task mode."""
 
+import io
 import json
 import os
 import stat
-import subprocess
 import sys
 import tempfile
 import unittest
+from contextlib import redirect_stderr
 from unittest import mock
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -84,6 +85,25 @@ class RunMatrixTest(unittest.TestCase):
         # Resumed: only the failed jobs run again.
         self.assertEqual(self.run_matrix(out), 0)
         self.assertEqual(len(self.records(out)), 6)
+
+    def test_resumes_past_a_record_cut_short(self):
+        """A run killed (or out of disk) while appending leaves its last line
+        cut short: the next run warns, naming the file and line, and runs
+        that job again."""
+        out = os.path.join(self.tmp.name, "out")
+        self.assertEqual(self.run_matrix(out, "--scenes", "a"), 0)
+        path = os.path.join(out, "results", "kdtree.jsonl")
+        with open(path) as f:
+            lines = f.read().splitlines()
+        with open(path, "w") as f:
+            f.write(lines[0] + "\n" + lines[1][:40])
+        err = io.StringIO()
+        with redirect_stderr(err):
+            self.assertEqual(self.run_matrix(out, "--scenes", "a"), 0)
+        self.assertIn("kdtree.jsonl:2 is not a JSON record", err.getvalue())
+        with open(path) as f:
+            tail = [json.loads(line) for line in f.read().splitlines()[2:]]
+        self.assertEqual([(r["scene"], r["preset"]) for r in tail], [("a", "clipping")])
 
     def test_a_new_source_tree_reruns_every_job(self):
         """Nothing is edited: only the provenance the records carry changes

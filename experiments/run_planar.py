@@ -15,7 +15,6 @@ cost images to OUT/costs/planar/<scene>_<variant>_seed.npy.gz.
 """
 
 import argparse
-import json
 import os
 import sys
 
@@ -24,6 +23,7 @@ sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
 import provenance  # noqa: E402
 import run_matrix  # noqa: E402
+import run_scenes  # noqa: E402
 
 RESULTS_FILE = "planar.jsonl"
 MODES = {"seed": "on", "default": "off"}
@@ -46,14 +46,8 @@ def main(argv=None):
     path = os.path.join(results, RESULTS_FILE)
     # Done: recorded from the same code (experiments/provenance.py).
     tree = provenance.pin()["source_tree"]
-    done = set()
-    if os.path.exists(path):
-        with open(path, encoding="utf-8") as f:
-            for line in f:
-                if line.strip():
-                    r = json.loads(line)
-                    if provenance.record_source_tree(r) == tree:
-                        done.add((r["scene"], r["preset"], r["mode"]))
+    done = {(r["scene"], r["preset"], r["mode"]) for r in run_scenes.read_records(path)
+            if provenance.record_source_tree(r) == tree}
     failures = 0
     for variant in run_matrix.load_matrix()["variants"]:
         for mode, flag in MODES.items():

@@ -220,23 +220,52 @@ def machine_info(scene_info=None):
 
 
 def read_records(path):
+    """The records of an append-only JSON-lines results file, for resuming a
+    run (run_scenes, run_matrix, run_accuracy, run_planar): [] when it does
+    not exist, blank lines skipped. A line that is not a JSON object (a run
+    killed or out of disk while appending leaves one cut short) is skipped
+    with a warning naming the file and line, so the job is run again. The
+    analysis reads the same files strictly (analysis/inputs.py load_jsonl)."""
     records = []
     if os.path.exists(path):
         with open(path, encoding="utf-8") as f:
             for lineno, line in enumerate(f, 1):
-                if line.strip():
-                    try:
-                        records.append(json.loads(line))
-                    except json.JSONDecodeError:
-                        print("scenes: %s:%d is not JSON (ignored for "
-                              "resuming)" % (path, lineno), file=sys.stderr)
+                if not line.strip():
+                    continue
+                try:
+                    record = json.loads(line)
+                except json.JSONDecodeError:
+                    record = None
+                if isinstance(record, dict):
+                    records.append(record)
+                else:
+                    print("%s:%d is not a JSON record (ignored for resuming)"
+                          % (path, lineno), file=sys.stderr)
     return records
 
 
+def ends_cut_short(path):
+    """Whether the file's last line lacks its newline (a record cut short by
+    a run killed or out of disk while appending)."""
+    try:
+        with open(path, "rb") as f:
+            if f.seek(0, os.SEEK_END) == 0:
+                return False
+            f.seek(-1, os.SEEK_END)
+            return f.read(1) != b"\n"
+    except FileNotFoundError:
+        return False
+
+
 def append_record(path, record):
-    """One line, flushed and synced: an interrupted run keeps what it did."""
+    """One line, flushed and synced: an interrupted run keeps what it did.
+    After a line cut short, the record starts a line of its own (the cut one
+    is left as it is, and read_records passes over it)."""
+    line = json.dumps(record, sort_keys=True) + "\n"
+    if ends_cut_short(path):
+        line = "\n" + line
     with open(path, "a", encoding="utf-8") as f:
-        f.write(json.dumps(record, sort_keys=True) + "\n")
+        f.write(line)
         f.flush()
         os.fsync(f.fileno())
 
