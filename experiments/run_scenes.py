@@ -228,7 +228,7 @@ def read_records(path):
     analysis reads the same files strictly (analysis/inputs.py load_jsonl)."""
     records = []
     if os.path.exists(path):
-        with open(path, encoding="utf-8") as f:
+        with open(path, encoding="utf-8", errors="replace") as f:
             for lineno, line in enumerate(f, 1):
                 if not line.strip():
                     continue
