@@ -40,21 +40,27 @@ def load_manifest(path):
     return scenes
 
 
+# What a line that is not a record most likely is, and what to do about it.
+CUT_SHORT_HINT = ("a record cut short by an interrupted run? The runners pass over it "
+                  "and run its job again; delete that line to build the report")
+
+
 def load_jsonl(path):
     """All records of a JSON-lines file (blank lines ignored). A missing file
-    is an empty list; a malformed line raises with its line number."""
+    is an empty list; a line that is not JSON (or not UTF-8) raises
+    ValueError naming the file and line. The runners, resuming, pass over
+    such a line instead (experiments/run_scenes.py read_records)."""
     records = []
     if not os.path.exists(path):
         return records
-    with open(path, encoding="utf-8") as f:
-        for lineno, line in enumerate(f, 1):
-            line = line.strip()
-            if not line:
-                continue
+    with open(path, "rb") as f:
+        for lineno, raw in enumerate(f, 1):
             try:
-                records.append(json.loads(line))
-            except json.JSONDecodeError as e:
-                raise ValueError("%s:%d: %s" % (path, lineno, e)) from e
+                line = raw.decode("utf-8").strip()
+                if line:
+                    records.append(json.loads(line))
+            except ValueError as e:  # UnicodeDecodeError, JSONDecodeError
+                raise ValueError("%s:%d: %s (%s)" % (path, lineno, e, CUT_SHORT_HINT)) from e
     return records
 
 

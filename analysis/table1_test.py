@@ -175,7 +175,11 @@ class ManifestShapeTest(unittest.TestCase):
             p = os.path.join(d, "r.jsonl")
             with open(p, "w") as f:
                 f.write('{"scene": "a"}\n\n{oops\n')
-            with self.assertRaisesRegex(ValueError, r"r\.jsonl:3"):
+            with self.assertRaisesRegex(ValueError, r"r\.jsonl:3.*cut short"):
+                inputs.load_jsonl(p)
+            with open(p, "wb") as f:
+                f.write(b'{"scene": "a"}\n{"scene": "\xff"}\n')
+            with self.assertRaisesRegex(ValueError, r"r\.jsonl:2"):
                 inputs.load_jsonl(p)
 
 

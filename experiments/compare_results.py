@@ -45,10 +45,13 @@ def flatten(rec, prefix=""):
 
 def latest_ok(path):
     recs = {}
-    with open(path, encoding="utf-8") as f:
-        for line in f:
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for lineno, line in enumerate(f, 1):
             if line.strip():
-                rec = json.loads(line)
+                try:
+                    rec = json.loads(line)
+                except json.JSONDecodeError as e:
+                    raise ValueError("%s:%d: %s" % (path, lineno, e)) from e
                 if rec.get("ok"):
                     recs[(rec["scene"], rec["preset"])] = rec
     return recs
@@ -75,7 +78,11 @@ def main(argv):
     if len(argv) != 3:
         print(__doc__, file=sys.stderr)
         return 2
-    diffs, common = compare(argv[1], argv[2])
+    try:
+        diffs, common = compare(argv[1], argv[2])
+    except (OSError, ValueError) as e:
+        print("compare: %s" % e, file=sys.stderr)
+        return 2
     for d in diffs[:50]:
         print("compare: " + d)
     print("compare: %d (scene, variant) pairs, %d differences"

@@ -208,8 +208,8 @@ def run_job(kdrt, scene, variant, settings, out, profile):
     return rec
 
 
-# Every runner appends its records with run_scenes' appender (a line,
-# flushed and synced) and resumes from run_scenes' reader (done_keys).
+# The runners of experiments/ append their records with run_scenes' appender
+# (a line, flushed and synced) and resume from run_scenes' reader (done_keys).
 append_record = run_scenes.append_record
 
 

@@ -239,8 +239,10 @@ def read_records(path):
                 if isinstance(record, dict):
                     records.append(record)
                 else:
-                    print("%s:%d is not a JSON record (ignored for resuming)"
-                          % (path, lineno), file=sys.stderr)
+                    print("resume: %s:%d is not a JSON record (cut short by an "
+                          "interrupted run?): passed over, its job runs again; "
+                          "analysis/make_all.py refuses the file until that "
+                          "line is deleted" % (path, lineno), file=sys.stderr)
     return records
 
 
