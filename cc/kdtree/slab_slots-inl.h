@@ -16,9 +16,9 @@
 // once per ray and moved by 2^-21 of itself to cover its rounding (a
 // widening absolute in t, where the one below is relative to t), and the
 // three maxima and minima as a tree; rays with a reciprocal infinite or
-// zero, or o * inv infinite, took the test below. Shorter by a subtraction and a max
-// on each node's dependent chain, yet (pair_variants, the fused test
-// behind a scratch switch in the same binary, 21 paired rounds, seven
+// zero, or o * inv infinite, took the test below. Shorter by a subtraction
+// and a max on each node's dependent chain, yet (pair_variants, the fused
+// test behind a scratch switch in the same binary, 21 paired rounds, seven
 // scenes) camera pass 0.976-1.028, the noise, and the shadow pass 1.31
 // times as long on courtyard-1m, 1.12 on city2 and 1.67 on lost-empire,
 // 0.99-1.04 on the others. Presumably the widening, which does not shrink
