@@ -64,8 +64,9 @@ HWY_INLINE void StartBest(D d, const PacketRays& p, BestLanes<D> (&bl)[kV]) {
 }
 
 // The lanes of `found` (bits) get their best hit in best[i] (the caller's
-// Hits; every such lane is below the packet's n); no other entry is touched. Tried and not kept (in-process A/B, 7 paired
-// rounds, morse-indoor, city2, bunny, lost-empire, morse-kitchen,
+// Hits; every such lane is below the packet's n); no other entry is
+// touched. Tried and not kept (in-process A/B, 7 paired rounds,
+// morse-indoor, city2, bunny, lost-empire, morse-kitchen,
 // hairball-1m; 2026-12-07): the hits as four vectors of four Hits each
 // (StoreInterleaved4), written by masked stores of the found lanes instead
 // of the loop below: camera pass 0.981-1.007 of the time, inside the
