@@ -15,6 +15,7 @@ import os
 
 from analysis import inputs
 from analysis import latex
+from experiments import jsonl  # the results files' one reader (strict)
 
 
 class Context:
@@ -50,7 +51,7 @@ class Context:
         """Raw records of results/<name> (a .jsonl file)."""
         return self._get(
             "results:" + name,
-            lambda: inputs.load_jsonl(os.path.join(self.results_dir, name)))
+            lambda: jsonl.read(os.path.join(self.results_dir, name)))
 
     @property
     def machine(self):

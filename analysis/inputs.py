@@ -1,8 +1,10 @@
-"""Readers for the pipeline's inputs: the scene manifest, the raw result
-files written by experiments/*.py, and the report's own (seed) numbers.
+"""Readers for the pipeline's inputs: the scene manifest, what the raw result
+files written by experiments/*.py hold (the files themselves are read by
+experiments/jsonl.py, which refuses a line that is not a record), and the
+report's own (seed) numbers.
 
 Readers are tolerant about shape (the manifest may be a list or a dict with
-"scenes") and strict about content (a malformed line is an error, not a
+"scenes") and strict about content (a malformed entry is an error, not a
 silently dropped record).
 """
 
@@ -38,30 +40,6 @@ def load_manifest(path):
         scene.setdefault("number", i + 1)
         scenes.append(scene)
     return scenes
-
-
-# What a line that is not a record most likely is, and what to do about it.
-CUT_SHORT_HINT = ("a record cut short by an interrupted run? The runners pass over it "
-                  "and run its job again; delete that line to build the report")
-
-
-def load_jsonl(path):
-    """All records of a JSON-lines file (blank lines ignored). A missing file
-    is an empty list; a line that is not JSON (or not UTF-8) raises
-    ValueError naming the file and line. The runners, resuming, pass over
-    such a line instead (experiments/run_scenes.py read_records)."""
-    records = []
-    if not os.path.exists(path):
-        return records
-    with open(path, "rb") as f:
-        for lineno, raw in enumerate(f, 1):
-            try:
-                line = raw.decode("utf-8").strip()
-                if line:
-                    records.append(json.loads(line))
-            except ValueError as e:  # UnicodeDecodeError, JSONDecodeError
-                raise ValueError("%s:%d: %s (%s)" % (path, lineno, e, CUT_SHORT_HINT)) from e
-    return records
 
 
 def latest_scene_records(records):

@@ -48,6 +48,7 @@ sys.path.insert(0, ROOT)
 from analysis import provenance  # noqa: E402  (the one provenance check)
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from provenance import opt_binary  # noqa: E402  (experiments/provenance.py)
+import jsonl  # noqa: E402  (the results files' one reader)
 import bench_tables  # noqa: E402  (the Markdown tables)
 import bench_structure  # noqa: E402  (the tables of packet work and bytes)
 import bench_merge  # noqa: E402  (several processes' rounds pooled, --processes)
@@ -72,13 +73,6 @@ def run(cmd):
     # current directory (the checkout that built them).
     print("+", " ".join(cmd), file=sys.stderr, flush=True)
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=ROOT)
-
-
-def read(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return [json.loads(line) for line in f if line.strip()]
 
 
 ProvenanceError = provenance.ProvenanceError
@@ -170,9 +164,12 @@ def main(argv=None):
                          "--out", render_out] + (["--twice"] if a.twice else [])
                         + (["--classes"] if a.classes else []))
     try:
+        build_records, raw_render = jsonl.read(build_out), jsonl.read(render_out)
+    except ValueError as e:  # a line that is not a record, named with its file and line
+        sys.exit("bench.py: %s" % e)
+    try:
         allow = (a.allow_mixed_provenance, a.allow_unoptimized_timings)
-        build = summarise(read(build_out), bench_tables.build_summary, build_out, *allow)
-        raw_render = read(render_out)
+        build = summarise(build_records, bench_tables.build_summary, build_out, *allow)
         render_records = bench_merge.merge_processes(raw_render)
         render = summarise(render_records, bench_tables.render_summary, render_out, *allow)
         targets = summarise(render_records, bench_tables.targets_summary, render_out, *allow)

@@ -12,8 +12,10 @@ Exit 0 when every pair agrees and both files hold the same set of successful
 (scene, variant) pairs; 1 otherwise, listing the differences.
 """
 
-import json
+import os
 import sys
+
+import jsonl  # experiments/jsonl.py: the results files' one reader
 
 # Keys whose values legitimately differ between two runs.
 TIMING_WORDS = ("T_B", "T_R", "perf", "seconds", "_s", "per_s", "runs",
@@ -44,17 +46,12 @@ def flatten(rec, prefix=""):
 
 
 def latest_ok(path):
-    recs = {}
-    with open(path, encoding="utf-8", errors="replace") as f:
-        for lineno, line in enumerate(f, 1):
-            if line.strip():
-                try:
-                    rec = json.loads(line)
-                except json.JSONDecodeError as e:
-                    raise ValueError("%s:%d: %s" % (path, lineno, e)) from e
-                if rec.get("ok"):
-                    recs[(rec["scene"], rec["preset"])] = rec
-    return recs
+    """The last successful record of each (scene, variant) in path; a line
+    that is not a record raises ValueError naming file and line (jsonl.read),
+    and a missing file is OSError."""
+    if not os.path.exists(path):
+        raise FileNotFoundError("no file %s" % path)
+    return {(rec["scene"], rec["preset"]): rec for rec in jsonl.read(path) if rec.get("ok")}
 
 
 def compare(a_path, b_path):

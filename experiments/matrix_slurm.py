@@ -14,6 +14,7 @@ import subprocess
 import sys
 import time
 
+import jsonl
 import run_matrix
 
 
@@ -95,7 +96,7 @@ def run_slurm(pending, settings, args, results_path):
                    "returncode": None, "error": "no record from SLURM task "
                    "%s_%d; log %s:\n%s" % (job_id, i, log, tail)}
         rec["backend"] = "slurm"
-        run_matrix.append_record(results_path, rec)
+        jsonl.append(results_path, rec)
         if not rec["ok"]:
             failures += 1
             print("run_matrix: task %s_%d (%s/%s) failed; log: %s"

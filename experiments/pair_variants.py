@@ -24,7 +24,6 @@ variant is faster.
 """
 
 import argparse
-import json
 import os
 import subprocess
 import sys
@@ -32,6 +31,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_tables import key_runs, per_round_ratio, tracing_runs  # noqa: E402
 from provenance import opt_binary  # noqa: E402
+import jsonl  # noqa: E402  (the results files' one reader)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 COLUMNS = (("T_R", "T_R_runs"), ("camera", "primary_s_runs"), ("shadow", "secondary_s_runs"))
@@ -91,8 +91,12 @@ def main(argv=None):
     args = p.parse_args(argv)
     if args.run:
         run(args)
-    with open(args.out, encoding="utf-8") as f:
-        records = [json.loads(line) for line in f if line.strip()]
+    if not os.path.exists(args.out):
+        sys.exit("pair_variants: no file %s" % args.out)
+    try:
+        records = jsonl.read(args.out)
+    except ValueError as e:  # a line that is not a record
+        sys.exit("pair_variants: %s" % e)
     print("\n".join(lines(records, args.base, args.variant, args.alone))
           or "no record has both tracers")
     return 0

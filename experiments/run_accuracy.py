@@ -25,6 +25,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
+import jsonl  # noqa: E402
 import provenance  # noqa: E402
 import run_matrix  # noqa: E402
 import run_scenes  # noqa: E402
@@ -154,7 +155,7 @@ def main(argv=None):
 
     runs = run_matrix.run_concurrently(pending, one, jobs_at_once)
     for i, rec in enumerate(runs):
-        run_matrix.append_record(results_path, rec)
+        jsonl.append(results_path, rec)
         failed += not rec["ok"]
         print("accuracy: [%d/%d] %s / %s: %s" % (
             i + 1, len(pending), rec["scene"], rec["step"],

@@ -48,6 +48,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
+import jsonl  # noqa: E402  (the results files' one reader and appender)
 import provenance  # noqa: E402  (the code identity of the checkout)
 import run_scenes  # noqa: E402  (manifest/index readers)
 
@@ -208,11 +209,6 @@ def run_job(kdrt, scene, variant, settings, out, profile):
     return rec
 
 
-# The runners of experiments/ append their records with run_scenes' appender
-# (a line, flushed and synced) and resume from run_scenes' reader (done_keys).
-append_record = run_scenes.append_record
-
-
 def run_concurrently(items, run, jobs_at_once):
     """Yields run(item) for every item, `jobs_at_once` at a time, each as it
     ends (so its record is appended at once). When the caller stops early or
@@ -245,7 +241,7 @@ def run_local(pending, settings, args, results_path, jobs_at_once):
         return rec
 
     for rec in run_concurrently(pending, one, jobs_at_once):
-        append_record(results_path, rec)
+        jsonl.append(results_path, rec)
         if not rec["ok"]:
             failures += 1
             print("run_matrix: %s/%s failed (exit %s): %s"

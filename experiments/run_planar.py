@@ -21,6 +21,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
 
+import jsonl  # noqa: E402
 import provenance  # noqa: E402
 import run_matrix  # noqa: E402
 import run_scenes  # noqa: E402
@@ -70,7 +71,7 @@ def main(argv=None):
                 continue
             rec = lines[-1]
             rec.update({"mode": mode, "preset": variant, "ok": True})
-            run_matrix.append_record(path, rec)
+            jsonl.append(path, rec)
             print("planar: %s %-18s %-7s lost %s, P_hit %s"
                   % (args.scene, variant, mode, rec.get("N_lost_planar"),
                      rec.get("P_hit")), file=sys.stderr)

@@ -35,6 +35,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "experiments"))
+import jsonl  # noqa: E402  (the results files' one reader and appender)
 import provenance  # noqa: E402  (the machine's fields, as the C++ records')
 
 DEFAULT_MANIFEST = os.path.join(ROOT, "data", "manifest.json")
@@ -220,56 +221,17 @@ def machine_info(scene_info=None):
 
 
 def read_records(path):
-    """The records of an append-only JSON-lines results file, for resuming a
-    run (run_scenes, run_matrix, run_accuracy, run_planar): [] when it does
-    not exist, blank lines skipped. A line that is not a JSON object (a run
-    killed or out of disk while appending leaves one cut short) is skipped
-    with a warning naming the file and line, so the job is run again. The
-    analysis reads the same files strictly (analysis/inputs.py load_jsonl)."""
-    records = []
-    if os.path.exists(path):
-        with open(path, encoding="utf-8", errors="replace") as f:
-            for lineno, line in enumerate(f, 1):
-                if not line.strip():
-                    continue
-                try:
-                    record = json.loads(line)
-                except json.JSONDecodeError:
-                    record = None
-                if isinstance(record, dict):
-                    records.append(record)
-                else:
-                    print("resume: %s:%d is not a JSON record (cut short by an "
-                          "interrupted run?): passed over, its job runs again; "
-                          "analysis/make_all.py refuses the file until that "
-                          "line is deleted" % (path, lineno), file=sys.stderr)
-    return records
-
-
-def ends_cut_short(path):
-    """Whether the file's last line lacks its newline (a record cut short by
-    a run killed or out of disk while appending)."""
-    try:
-        with open(path, "rb") as f:
-            if f.seek(0, os.SEEK_END) == 0:
-                return False
-            f.seek(-1, os.SEEK_END)
-            return f.read(1) != b"\n"
-    except FileNotFoundError:
-        return False
-
-
-def append_record(path, record):
-    """One line, flushed and synced: an interrupted run keeps what it did.
-    After a line cut short, the record starts a line of its own (the cut one
-    is left as it is, and read_records passes over it)."""
-    line = json.dumps(record, sort_keys=True) + "\n"
-    if ends_cut_short(path):
-        line = "\n" + line
-    with open(path, "a", encoding="utf-8") as f:
-        f.write(line)
-        f.flush()
-        os.fsync(f.fileno())
+    """The records of a results file, for resuming a run (run_scenes,
+    run_matrix, run_accuracy, run_planar): jsonl.read, except that a line
+    that is not a JSON record (a run killed or out of disk while appending
+    leaves one cut short) is passed over with a warning naming the file and
+    line, so its job runs again. The analysis reads the same files strictly."""
+    def warn(path, lineno):
+        print("resume: %s:%d is not a JSON record (cut short by an "
+              "interrupted run?): passed over, its job runs again; "
+              "analysis/make_all.py refuses the file until that "
+              "line is deleted" % (path, lineno), file=sys.stderr)
+    return jsonl.read(path, on_bad=warn)
 
 
 def last_json_line(text):
@@ -353,7 +315,7 @@ def run(profile, out_dir, manifest=DEFAULT_MANIFEST, index=DEFAULT_INDEX,
         f.write("\n")
     os.replace(os.path.join(results, "machine.json.tmp"),
                os.path.join(results, "machine.json"))
-    append_record(os.path.join(results, "machines.jsonl"), machine)
+    jsonl.append(os.path.join(results, "machines.jsonl"), machine)
 
     path = os.path.join(results, SCENES_FILE)
     done_before = {(r.get("scene"), r.get("mesh"), r.get("mesh_bytes"))
@@ -378,7 +340,7 @@ def run(profile, out_dir, manifest=DEFAULT_MANIFEST, index=DEFAULT_INDEX,
         record = measure(name, mesh, scene_info, soup_cache, timeout)
         record["profile"] = profile
         record["git_commit"] = machine.get("git_commit")
-        append_record(path, record)
+        jsonl.append(path, record)
         if record["ok"]:
             say("  %-24s %12s triangles  %.2fs%s" % (
                 name, format(record.get("n_tri", 0), ","), record["wall_s"],

@@ -29,6 +29,9 @@ import sys
 import tempfile
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import jsonl  # noqa: E402  (the results files' one reader)
+
 REPO = Path(__file__).resolve().parent.parent
 SCENES = REPO / "data" / "cache" / "scenes"
 # Eight scenes of the quick profile, 5k to 250k triangles: scans, CAD, a
@@ -63,8 +66,7 @@ def collect(args):
                     why = (proc.stdout.strip().splitlines() or ["?"])[-1]
                     for threads in args.threads.split(","):
                         out[f"{scene}/{preset}/{threads}"] = "failed: " + why
-        for line in records.read_text().splitlines():
-            r = json.loads(line)
+        for r in jsonl.read(records):
             out[f"{r['scene']}/{r['preset']}/{r['threads']}"] = r["tree_fingerprint"]
     Path(args.out).write_text(json.dumps(out, indent=1, sort_keys=True) + "\n")
     failed = sum(1 for v in out.values() if v.startswith("failed"))

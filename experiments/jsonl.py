@@ -1,0 +1,67 @@
+"""The results files' one format: JSON lines, one record (a JSON object) a
+line, appended to and never edited. One reader and one appender for every
+program that reads or writes them: the runners (run_scenes, run_matrix,
+run_accuracy, run_planar and the SLURM backend), the benches' summaries
+(bench.py, pair_variants.py), the SLURM check (compare_results.py) and the
+analysis (analysis/inputs.py). Standard library only, so the runners and the
+SLURM check need neither pandas nor the analysis."""
+
+import json
+import os
+
+# What a line that is not a record most likely is, and what to do about it.
+CUT_SHORT_HINT = ("a record cut short by an interrupted run? The runners pass over it "
+                  "and run its job again; delete that line to build the report")
+
+
+def read(path, on_bad=None):
+    """The records of a JSON-lines file, in order: [] when the file does not
+    exist, blank lines skipped. A line that is not a JSON object (bytes that
+    are not UTF-8 included) raises ValueError naming the file and the line,
+    with CUT_SHORT_HINT; given on_bad, on_bad(path, lineno) is called
+    instead and the line passed over (the runners, resuming)."""
+    records = []
+    if not os.path.exists(path):
+        return records
+    with open(path, "rb") as f:
+        for lineno, raw in enumerate(f, 1):
+            try:
+                line = raw.decode("utf-8").strip()
+                if not line:
+                    continue
+                record = json.loads(line)
+                if not isinstance(record, dict):
+                    raise ValueError("a JSON %s, not a record" % type(record).__name__)
+            except ValueError as e:  # UnicodeDecodeError, JSONDecodeError, the above
+                if on_bad is None:
+                    raise ValueError("%s:%d: %s (%s)" % (path, lineno, e, CUT_SHORT_HINT)) from e
+                on_bad(path, lineno)
+                continue
+            records.append(record)
+    return records
+
+
+def ends_cut_short(path):
+    """Whether the file's last line lacks its newline (a record cut short by
+    a run killed or out of disk while appending)."""
+    try:
+        with open(path, "rb") as f:
+            if f.seek(0, os.SEEK_END) == 0:
+                return False
+            f.seek(-1, os.SEEK_END)
+            return f.read(1) != b"\n"
+    except FileNotFoundError:
+        return False
+
+
+def append(path, record):
+    """One line, keys sorted, flushed and synced: an interrupted run keeps
+    what it did. After a line cut short, the record starts a line of its own
+    (the cut one is left as it is: raw results are never edited)."""
+    line = json.dumps(record, sort_keys=True) + "\n"
+    if ends_cut_short(path):
+        line = "\n" + line
+    with open(path, "a", encoding="utf-8") as f:
+        f.write(line)
+        f.flush()
+        os.fsync(f.fileno())
