@@ -5,6 +5,7 @@ already hold for the same code, and running robust_cost_bench on the rest.
 Standard library only.
 """
 
+import importlib.util
 import json
 import os
 import subprocess
@@ -13,22 +14,31 @@ import sys
 GENERATED = "generated"  # the cost bench's own scene (every preset)
 
 
-def read_jsonl(path):
-    """The records of a JSON-lines file ([] when it does not exist); a line
-    that does not parse is skipped."""
-    out = []
-    if not os.path.exists(path):
-        return out
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            line = line.strip()
-            if not line:
-                continue
-            try:
-                out.append(json.loads(line))
-            except ValueError:
-                continue
-    return out
+def load_experiments_module(name):
+    """experiments/<name>.py beside this file's checkout (in Bazel's runfiles
+    too: a data dependency), loaded under its own name "experiments_<name>":
+    the one implementation of what it does (provenance: the code identity and
+    the machine's fields; jsonl: the results files' reader)."""
+    path = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))), "experiments", name + ".py")
+    spec = importlib.util.spec_from_file_location("experiments_" + name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+JSONL = load_experiments_module("jsonl")
+
+
+def read_records(path):
+    """The records of a results file ([] when it does not exist), for
+    resuming: a line that is not a JSON record (cut short by an interrupted
+    run) is passed over with a warning naming the file and line, and its run
+    is made again (experiments/jsonl.py)."""
+    def warn(path, lineno):
+        print("robust_suite: %s:%d is not a JSON record (cut short by an "
+              "interrupted run?): passed over" % (path, lineno), file=sys.stderr)
+    return JSONL.read(path, on_bad=warn)
 
 
 def short_tree(tree):
@@ -71,7 +81,7 @@ def done_runs(cost_out, source_tree, repeats=1):
     done = set()
     if not source_tree:
         return done
-    for rec in read_jsonl(cost_out):
+    for rec in read_records(cost_out):
         prov = rec.get("provenance")
         if (isinstance(prov, dict) and prov.get("source_tree") == source_tree
                 and prov.get("timing_build")

@@ -50,7 +50,6 @@ cpu_id, cpu_caches, cores), timestamp_utc and collected_by.
 
 import argparse
 import concurrent.futures
-import importlib.util
 import json
 import os
 import re
@@ -84,19 +83,8 @@ COST_TARGET = "//cc/robust:robust_cost_bench"
 
 # --- provenance --------------------------------------------------------------
 
-def _load_provenance():
-    """experiments/provenance.py beside this file's checkout (in Bazel's
-    runfiles too: it is a data dependency), the one implementation of the code
-    identity and the machine's fields; loaded once, under its own name."""
-    path = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
-        os.path.abspath(__file__)))), "experiments", "provenance.py")
-    spec = importlib.util.spec_from_file_location("experiments_provenance", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-PROVENANCE = _load_provenance()
+# experiments/provenance.py (robust_cost_runs.load_experiments_module).
+PROVENANCE = cost.load_experiments_module("provenance")
 
 
 def code_identity(repo_root="."):
@@ -149,7 +137,7 @@ def suite_done(out_path, source_tree, profile, cases=None, ray_stride=1):
     cases = CASES if cases is None else cases
     if not source_tree:
         return None
-    recs = cost.read_jsonl(out_path)
+    recs = cost.read_records(out_path)
     suites = [r for r in recs if r.get("kind") == "suite"]
     if not suites:
         return None
@@ -190,7 +178,7 @@ def run_suite(bin_dir, out_path, cases=None, log=None, provenance=None,
               file=log, flush=True)
     # Longest first (by the last run's times in out_path), so that no long
     # case starts last; the records keep the cases' order.
-    last = {r.get("binary"): r.get("seconds") or 0 for r in cost.read_jsonl(out_path)
+    last = {r.get("binary"): r.get("seconds") or 0 for r in cost.read_records(out_path)
             if r.get("kind") == "binary"}
     order = sorted(range(len(cases)), key=lambda i: -last.get(cases[i][1], 0))
     with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:

@@ -248,6 +248,15 @@ class SuiteTest(unittest.TestCase):
                                 "mode": "fast", "seconds": 1.0}) + "\n")
         self.assertEqual(robust_cost_runs.done_runs(cost, TREE), set())
 
+    def test_a_record_cut_short_is_passed_over_with_a_warning(self):
+        cost = os.path.join(self.dir, "cost.jsonl")
+        with open(cost, "w") as f:
+            f.write(json.dumps({"scene": "s1"}) + '\n{"scene": ')
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            self.assertEqual(robust_cost_runs.read_records(cost), [{"scene": "s1"}])
+        self.assertIn("cost.jsonl:2 is not a JSON record", err.getvalue())
+
     def main(self, *args):
         manifest, index, matrix = self.scenes_files()
         err = io.StringIO()
