@@ -170,6 +170,14 @@ class ManifestShapeTest(unittest.TestCase):
                 with self.assertRaises(ValueError):
                     inputs.load_manifest(p)
 
+    def test_the_analysis_refuses_a_record_cut_short(self):
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "kdtree.jsonl"), "w") as f:
+                f.write('{"scene": "a"}\n{"scene": ')
+            ctx = context.Context(d, os.path.join(d, "none.json"), d)
+            with self.assertRaisesRegex(ValueError, r"kdtree\.jsonl:2: .*cut short"):
+                ctx.results("kdtree.jsonl")
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -15,7 +15,8 @@ Exit 0 when every pair agrees and both files hold the same set of successful
 import os
 import sys
 
-import jsonl  # experiments/jsonl.py: the results files' one reader
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import jsonl  # noqa: E402  (experiments/jsonl.py: the results files' one reader)
 
 # Keys whose values legitimately differ between two runs.
 TIMING_WORDS = ("T_B", "T_R", "perf", "seconds", "_s", "per_s", "runs",

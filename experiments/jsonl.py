@@ -1,25 +1,28 @@
 """The results files' one format: JSON lines, one record (a JSON object) a
 line, appended to and never edited. One reader and one appender for every
 program that reads or writes them: the runners (run_scenes, run_matrix,
-run_accuracy, run_planar and the SLURM backend), the benches' summaries
-(bench.py, pair_variants.py), the SLURM check (compare_results.py) and the
-analysis (analysis/inputs.py). Standard library only, so the runners and the
-SLURM check need neither pandas nor the analysis."""
+run_accuracy, run_planar, the SLURM backend matrix_slurm and cc/robust's
+suite), the benches' drivers and summaries (bench.py, pair_variants.py,
+pair_binaries.py, tree_fingerprints.py), the SLURM check
+(compare_results.py) and the analysis (analysis/context.py). Standard
+library only, so the runners and the SLURM check need neither pandas nor
+the analysis."""
 
 import json
 import os
 
-# What a line that is not a record most likely is, and what to do about it.
-CUT_SHORT_HINT = ("a record cut short by an interrupted run? The runners pass over it "
-                  "and run its job again; delete that line to build the report")
+# What a line that does not parse most likely is, and what to do about it.
+CUT_SHORT_HINT = ("a record cut short by an interrupted run? Delete that line; a runner "
+                  "resuming passes over it and runs its job again")
 
 
 def read(path, on_bad=None):
     """The records of a JSON-lines file, in order: [] when the file does not
-    exist, blank lines skipped. A line that is not a JSON object (bytes that
-    are not UTF-8 included) raises ValueError naming the file and the line,
-    with CUT_SHORT_HINT; given on_bad, on_bad(path, lineno) is called
-    instead and the line passed over (the runners, resuming)."""
+    exist, blank lines skipped. A line that is not a JSON object raises
+    ValueError naming the file and the line (with CUT_SHORT_HINT when it
+    does not parse: JSON cut short, or bytes that are not UTF-8); given
+    on_bad, on_bad(path, lineno) is called instead and the line passed over
+    (the runners, resuming)."""
     records = []
     if not os.path.exists(path):
         return records
@@ -30,11 +33,13 @@ def read(path, on_bad=None):
                 if not line:
                     continue
                 record = json.loads(line)
-                if not isinstance(record, dict):
-                    raise ValueError("a JSON %s, not a record" % type(record).__name__)
-            except ValueError as e:  # UnicodeDecodeError, JSONDecodeError, the above
+                why = None if isinstance(record, dict) else (
+                    "a JSON %s, not a record" % type(record).__name__)
+            except ValueError as e:  # UnicodeDecodeError, JSONDecodeError
+                record, why = None, "%s (%s)" % (e, CUT_SHORT_HINT)
+            if why is not None:
                 if on_bad is None:
-                    raise ValueError("%s:%d: %s (%s)" % (path, lineno, e, CUT_SHORT_HINT)) from e
+                    raise ValueError("%s:%d: %s" % (path, lineno, why))
                 on_bad(path, lineno)
                 continue
             records.append(record)

@@ -29,10 +29,12 @@ class JsonlTest(unittest.TestCase):
         self.assertEqual(jsonl.read(self.path), [{"a": 1}, {"a": 2}])
 
     def test_a_line_that_is_not_a_record_names_file_and_line(self):
-        for data, line in ((b'{"a": 1}\n\n{oops\n', 3), (b'{"a": 1}\n{"a": "\xff"}\n', 2),
-                           (b'{"a": 1}\n[1, 2]\n', 2), (b'7\n', 1)):
+        for data, line, why in ((b'{"a": 1}\n\n{oops\n', 3, "cut short"),
+                                (b'{"a": 1}\n{"a": "\xff"}\n', 2, "cut short"),
+                                (b'{"a": 1}\n[1, 2]\n', 2, "a JSON list, not a record"),
+                                (b'7\n', 1, "a JSON int, not a record")):
             self.write(data)
-            with self.assertRaisesRegex(ValueError, r"r\.jsonl:%d: .*cut short" % line):
+            with self.assertRaisesRegex(ValueError, r"r\.jsonl:%d: .*%s" % (line, why)):
                 jsonl.read(self.path)
 
     def test_on_bad_passes_a_line_over(self):

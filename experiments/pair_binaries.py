@@ -22,12 +22,12 @@ binaries must render the same image).
 """
 
 import argparse
-import json
 import os
 import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import jsonl  # noqa: E402  (the results files' one appender)
 import run_matrix  # noqa: E402  (run_kdrt: one kdrt process, its record)
 
 
@@ -78,18 +78,17 @@ def main(argv=None):
     bins, scenes = args.binaries.split(","), args.scenes.split(",")
     times = {(s, b): [] for s in scenes for b in bins}
     images = {s: set() for s in scenes}
-    with open(args.out, "a", encoding="utf-8") as log:
-        for r in range(args.rounds + 1):
-            for s in scenes:
-                for b in bins[r % len(bins):] + bins[:r % len(bins)]:
-                    rec = run(b, s, args.preset)
-                    images[s].add(rec["image_fnv64"])
-                    times_now = row(rec)
-                    log.write(json.dumps({"round": r, "scene": s, "binary": b,
-                                          **dict(zip(COLUMNS, times_now)),
-                                          "image_fnv64": rec["image_fnv64"]}) + "\n")
-                    if r > 0:
-                        times[(s, b)].append(times_now)
+    for r in range(args.rounds + 1):
+        for s in scenes:
+            for b in bins[r % len(bins):] + bins[:r % len(bins)]:
+                rec = run(b, s, args.preset)
+                images[s].add(rec["image_fnv64"])
+                times_now = row(rec)
+                jsonl.append(args.out, {"round": r, "scene": s, "binary": b,
+                                        **dict(zip(COLUMNS, times_now)),
+                                        "image_fnv64": rec["image_fnv64"]})
+                if r > 0:
+                    times[(s, b)].append(times_now)
     for s in scenes:
         for b in bins[1:]:
             cols = summary(ratios(times[(s, b)], times[(s, bins[0])]))
