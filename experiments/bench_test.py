@@ -324,6 +324,14 @@ class BenchTest(unittest.TestCase):
             with contextlib.redirect_stdout(io.StringIO()):
                 bench.main(["--out", d, "--summary_only", "--allow_mixed_provenance"])
 
+    def test_main_names_a_line_that_is_not_a_record(self):
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "render.jsonl"), "w") as f:
+                f.write(json.dumps(build_record(1, [1.0])) + '\n{"bench": ')
+            with self.assertRaises(SystemExit) as e, contextlib.redirect_stdout(io.StringIO()):
+                bench.main(["--out", d, "--summary_only"])
+            self.assertRegex(str(e.exception.code), r"bench\.py: .*render\.jsonl:2: .*cut short")
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -64,6 +64,18 @@ class PairTest(unittest.TestCase):
         os.unlink(f.name)
         self.assertIn("T_R 1.100", buf.getvalue())
 
+    def test_main_names_a_line_that_is_not_a_record(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "ab.jsonl")
+            with open(path, "w") as f:
+                f.write('{"scene": ')
+            with self.assertRaises(SystemExit) as e:
+                pair_variants.main(["--base", "a", "--variant", "b", "--out", path])
+            self.assertRegex(str(e.exception.code), r"pair_variants: .*ab\.jsonl:1: .*cut short")
+            with self.assertRaises(SystemExit) as e:
+                pair_variants.main(["--base", "a", "--variant", "b", "--out", path + ".none"])
+            self.assertIn("no file", str(e.exception.code))
+
 
 if __name__ == "__main__":
     unittest.main()
