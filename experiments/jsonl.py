@@ -10,6 +10,7 @@ the analysis."""
 
 import json
 import os
+import sys
 
 # What a line that does not parse most likely is, and what to do about it.
 CUT_SHORT_HINT = ("a record cut short by an interrupted run? Delete that line; a runner "
@@ -22,7 +23,7 @@ def read(path, on_bad=None):
     ValueError naming the file and the line (with CUT_SHORT_HINT when it
     does not parse: JSON cut short, or bytes that are not UTF-8); given
     on_bad, on_bad(path, lineno) is called instead and the line passed over
-    (the runners, resuming)."""
+    (read_resuming)."""
     records = []
     if not os.path.exists(path):
         return records
@@ -44,6 +45,19 @@ def read(path, on_bad=None):
                 continue
             records.append(record)
     return records
+
+
+def read_resuming(path, who):
+    """read() for a run that resumes from path: a line that is not a JSON
+    record (a run killed or out of disk while appending leaves one cut
+    short) is passed over with a warning, `who` first, naming the file and
+    line, so its job runs again. The analysis reads the same files strictly."""
+    def warn(path, lineno):
+        print("%s: %s:%d is not a JSON record (cut short by an interrupted "
+              "run?): passed over, its job runs again; analysis/make_all.py "
+              "refuses the file until that line is deleted" % (who, path, lineno),
+              file=sys.stderr)
+    return read(path, on_bad=warn)
 
 
 def ends_cut_short(path):

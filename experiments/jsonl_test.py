@@ -1,9 +1,11 @@
 """The results files' reader and appender (experiments/jsonl.py)."""
 
+import io
 import os
 import sys
 import tempfile
 import unittest
+from contextlib import redirect_stderr
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import jsonl  # noqa: E402
@@ -43,6 +45,14 @@ class JsonlTest(unittest.TestCase):
         records = jsonl.read(self.path, on_bad=lambda p, n: bad.append((p, n)))
         self.assertEqual(records, [{"a": 1}, {"a": 3}])
         self.assertEqual(bad, [(self.path, 2), (self.path, 3)])
+
+    def test_read_resuming_warns_and_passes_over(self):
+        self.write(b'{"a": 1}\n{"a": ')
+        err = io.StringIO()
+        with redirect_stderr(err):
+            self.assertEqual(jsonl.read_resuming(self.path, "resume"), [{"a": 1}])
+        self.assertIn("resume: %s:2 is not a JSON record" % self.path, err.getvalue())
+        self.assertIn("its job runs again", err.getvalue())
 
     def test_append_sorts_keys_and_starts_a_line_after_one_cut_short(self):
         jsonl.append(self.path, {"b": 1, "a": 2})

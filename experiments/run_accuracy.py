@@ -101,8 +101,7 @@ def run_one(kdrt, scene, step, profile, profile_name, out, source_tree=None):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--profile", default="quick")
-    parser.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"),
-                        help="kdrt binary (default: %(default)s, the --config=opt build's)")
+    run_matrix.add_kdrt_flag(parser)
     parser.add_argument("--out", default=os.path.join(ROOT, "out"))
     parser.add_argument("--study", default=STUDY)
     parser.add_argument("--manifest", default=run_scenes.DEFAULT_MANIFEST)
@@ -118,8 +117,7 @@ def main(argv=None):
                         help="run again steps already recorded (the analysis "
                         "keeps the newest record)")
     args = parser.parse_args(argv)
-    if not os.path.exists(args.kdrt):
-        print("accuracy: no kdrt binary at %s" % args.kdrt, file=sys.stderr)
+    if run_matrix.kdrt_missing(args.kdrt, "accuracy"):
         return 2
     with open(args.study, encoding="utf-8") as f:
         study = json.load(f)

@@ -119,7 +119,7 @@ def done_keys(results_path):
     an optimised build (provenance.timing_build: the analysis refuses the
     timings of any other, so such a job is not done)."""
     keys = set()
-    for rec in run_scenes.read_records(results_path):
+    for rec in jsonl.read_resuming(results_path, "resume"):
         prov = rec.get("provenance") or {}
         if rec.get("ok") and prov.get("timing_build", True):
             keys.add(tuple(rec["job"]))
@@ -256,11 +256,26 @@ def run_local(pending, settings, args, results_path, jobs_at_once):
     return failures
 
 
+def add_kdrt_flag(parser):
+    """--kdrt, as the runners of experiments/ take it: the --config=opt
+    build's by default (never bazel-bin, which follows the last build)."""
+    parser.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"),
+                        help="kdrt binary (default: %(default)s, the --config=opt build's)")
+
+
+def kdrt_missing(kdrt, who):
+    """True, after saying so on stderr, when there is no kdrt binary at kdrt."""
+    if os.path.exists(kdrt):
+        return False
+    print("%s: no kdrt binary at %s" % (who, kdrt), file=sys.stderr)
+    return True
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--profile", default="quick")
     p.add_argument("--out", default=os.path.join(ROOT, "out"))
-    p.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"))
+    add_kdrt_flag(p)
     p.add_argument("--manifest", default=run_scenes.DEFAULT_MANIFEST)
     p.add_argument("--index", default=run_scenes.DEFAULT_INDEX)
     p.add_argument("--scenes", default="", help="comma-separated subset")
@@ -303,8 +318,7 @@ def main(argv=None):
     settings["source_tree"] = ident["source_tree"]
     print("run_matrix: code %s (source tree %s)"
           % (provenance.short(ident), ident["source_tree"]), file=sys.stderr)
-    if not os.path.exists(args.kdrt):
-        print("run_matrix: no kdrt binary at %s" % args.kdrt, file=sys.stderr)
+    if kdrt_missing(args.kdrt, "run_matrix"):
         return 2
     manifest = run_scenes.load_manifest(args.manifest)
     try:

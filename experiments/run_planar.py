@@ -24,7 +24,6 @@ sys.path.insert(0, os.path.join(ROOT, "experiments"))
 import jsonl  # noqa: E402
 import provenance  # noqa: E402
 import run_matrix  # noqa: E402
-import run_scenes  # noqa: E402
 
 RESULTS_FILE = "planar.jsonl"
 MODES = {"seed": "on", "default": "off"}
@@ -32,13 +31,11 @@ MODES = {"seed": "on", "default": "off"}
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--kdrt", default=provenance.opt_binary("cc", "tools", "kdrt"),
-                   help="kdrt binary (default: %(default)s, the --config=opt build's)")
+    run_matrix.add_kdrt_flag(p)
     p.add_argument("--scene", default="lost-empire")
     p.add_argument("--out", default=os.path.join(ROOT, "out"))
     args = p.parse_args(argv)
-    if not os.path.exists(args.kdrt):
-        print("run_planar: no kdrt binary at %s" % args.kdrt, file=sys.stderr)
+    if run_matrix.kdrt_missing(args.kdrt, "run_planar"):
         return 2
     results = os.path.join(args.out, "results")
     images = os.path.join(args.out, "images", "planar")
@@ -47,7 +44,7 @@ def main(argv=None):
     path = os.path.join(results, RESULTS_FILE)
     # Done: recorded from the same code (experiments/provenance.py).
     tree = provenance.pin()["source_tree"]
-    done = {(r["scene"], r["preset"], r["mode"]) for r in run_scenes.read_records(path)
+    done = {(r["scene"], r["preset"], r["mode"]) for r in jsonl.read_resuming(path, "resume")
             if provenance.record_source_tree(r) == tree}
     failures = 0
     for variant in run_matrix.load_matrix()["variants"]:

@@ -220,20 +220,6 @@ def machine_info(scene_info=None):
 # Running scene_info
 
 
-def read_records(path):
-    """The records of a results file, for resuming a run (run_scenes,
-    run_matrix, run_accuracy, run_planar): jsonl.read, except that a line
-    that is not a JSON record (a run killed or out of disk while appending
-    leaves one cut short) is passed over with a warning naming the file and
-    line, so its job runs again. The analysis reads the same files strictly."""
-    def warn(path, lineno):
-        print("resume: %s:%d is not a JSON record (cut short by an "
-              "interrupted run?): passed over, its job runs again; "
-              "analysis/make_all.py refuses the file until that "
-              "line is deleted" % (path, lineno), file=sys.stderr)
-    return jsonl.read(path, on_bad=warn)
-
-
 def last_json_line(text):
     for line in reversed(text.splitlines()):
         line = line.strip()
@@ -319,7 +305,7 @@ def run(profile, out_dir, manifest=DEFAULT_MANIFEST, index=DEFAULT_INDEX,
 
     path = os.path.join(results, SCENES_FILE)
     done_before = {(r.get("scene"), r.get("mesh"), r.get("mesh_bytes"))
-                   for r in read_records(path) if r.get("ok")}
+                   for r in jsonl.read_resuming(path, "resume") if r.get("ok")}
     todo, skipped = [], 0
     for name, mesh in chosen:
         size = os.path.getsize(mesh) if os.path.exists(mesh) else None

@@ -31,14 +31,10 @@ JSONL = load_experiments_module("jsonl")
 
 
 def read_records(path):
-    """The records of a results file ([] when it does not exist), for
-    resuming: a line that is not a JSON record (cut short by an interrupted
-    run) is passed over with a warning naming the file and line, and its run
-    is made again (experiments/jsonl.py)."""
-    def warn(path, lineno):
-        print("robust_suite: %s:%d is not a JSON record (cut short by an "
-              "interrupted run?): passed over" % (path, lineno), file=sys.stderr)
-    return JSONL.read(path, on_bad=warn)
+    """The records of a results file, for resuming: a line cut short by an
+    interrupted run is passed over with a warning (experiments/jsonl.py
+    read_resuming)."""
+    return JSONL.read_resuming(path, "robust_suite")
 
 
 def short_tree(tree):
