@@ -49,6 +49,14 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   std::vector<Ray> rays = testing::RandomRays(soup, 20000, 7);
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
   for (const Ray& r : testing::GridAxisRays(3000, 9)) rays.push_back(r);
+  // Rays that start behind their origin (tmin < 0: the box test's widening
+  // in full, slab_slots-inl.h) or ahead of it.
+  const float size = Length(soup.Bounds().Extent());
+  for (size_t i = 0; i < 4000; ++i) {
+    Ray r = rays[i];
+    r.tmin = (i % 2 == 0 ? -0.5f : 0.1f) * size;
+    rays.push_back(r);
+  }
   const testing::BvhMismatches m = testing::CompareWithKdTree(soup, *tree, bvh, rays, 16);
   EXPECT_EQ(m.closest, 0);
   EXPECT_EQ(m.any, 0);

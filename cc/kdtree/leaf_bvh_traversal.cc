@@ -3,6 +3,7 @@
 // vector where it has 256-bit vectors, two of SSE), the leaves with the
 // kd-tree's leaf step (leaf_step-inl.h).
 #include <cmath>
+#include <optional>
 
 #include "cc/kdtree/leaf_bvh.h"
 #include "cc/kdtree/leaf_step-inl.h"
@@ -39,20 +40,81 @@ struct BoxRay {
   int near_row[3], far_row[3];  // LeafBvhNode::box rows
 };
 
+constexpr IntersectionMode kMode = IntersectionMode::kWatertight;
+
+// The leaf step's ray (leaf_step-inl.h LeafRay): set up with the ray when
+// kLazy is false; else at the first leaf the ray reaches, with the
+// watertight frame, which a ray that reaches no leaf never needs. Lazy for
+// any hit: many shadow rays of the flat scenes reach no leaf (on city2 a
+// shadow ray takes 5.0 node steps and 0.59 leaf steps; callgrind).
+template <bool kLazy>
+class LeafRayOf;
+
+template <>
+class LeafRayOf<false> {
+ public:
+  LeafRayOf(const Ray& ray, const RaySetup& setup, uint32_t origin_tri)
+      : leaf_ray_(ray, setup.wray, origin_tri) {}
+  const leaf_step::LeafRay<kMode>& Get() { return leaf_ray_; }
+
+ private:
+  const leaf_step::LeafRay<kMode> leaf_ray_;
+};
+
+template <>
+class LeafRayOf<true> {
+ public:
+  // `ray`: the sanitised ray, which must outlive this.
+  LeafRayOf(const Ray& ray, const RaySetup&, uint32_t origin_tri)
+      : ray_(ray), origin_tri_(origin_tri) {}
+  const leaf_step::LeafRay<kMode>& Get() {
+    if (!leaf_ray_) {
+      wray_ = MakeWatertightRay(ray_);  // SetUpVector's frame, bit for bit (ray_setup_test)
+      leaf_ray_.emplace(ray_, wray_, origin_tri_);
+    }
+    return *leaf_ray_;
+  }
+
+ private:
+  const Ray& ray_;
+  const uint32_t origin_tri_;
+  WatertightRay wray_;
+  std::optional<leaf_step::LeafRay<kMode>> leaf_ray_;
+};
+
 // One function for the same reason as traversal.cc's Traverse: the set-up,
-// the stack and the best hit stay in registers.
-template <bool kAnyHit>
+// the stack and the best hit stay in registers. kScaled: the box test's
+// widening by one multiplication a side (slab_slots-inl.h RaySlots), for a
+// ray with tmin >= 0.
+//
+// Any hit (shadow rays) sets up only what the box test needs
+// (SetUpCommonBoxRay) and the leaf step's ray at its first leaf
+// (LeafRayOf<true>); the answers are the same, as the root box's interval
+// only ever ended a ray that the BVH's boxes, which hold the scene's
+// triangles, also end. Against the set-up in full (in-process A/B, the two
+// in one render_bench process, 21 paired rounds, kd_bvh; 2026-12-08): the
+// shadow pass, its tracing alone, took 0.880 of the time on stk-candela-
+// city, 0.911 on courtyard-1m and lost-empire, 0.923 on morse-kitchen,
+// 0.935 on city2, 0.947 on rungholt-1m, 0.96-0.98 on bunny, teapots and
+// fforest and 0.992 on hairball-1m, where the camera pass, the same code on
+// both sides, gave 0.998-1.001; instructions per shadow ray (callgrind, an
+// AVX2 build, the same rays): city2 798 -> 715, stk-candela-city 596 ->
+// 463, bunny 1688 -> 1609, hairball-1m 2915 -> 2804 (Embree's
+// rtcOccluded1 on city2: 458).
+template <bool kAnyHit, bool kScaled>
 Hit TraceLeafBvh(const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
   const KdTree& leaves = bvh.leaves;
-  constexpr IntersectionMode kMode = IntersectionMode::kWatertight;
   Hit best;
   Ray ray = LoadRay(input);
   if (bvh.nodes.empty()) return best;
   RaySetup setup;  // the kd-tree's: the same sanitising, slack and watertight ray
-  if (!SanitizeAndSetUpRay(&ray, leaves.bounds, &setup)) return best;
+  if (!(kAnyHit && SetUpCommonBoxRay(ray, &setup)) &&
+      !SanitizeAndSetUpRay(&ray, leaves.bounds, &setup)) {
+    return best;
+  }
   best.t = ray.tmax;
-  const float slack = setup.slack;
-  const leaf_step::LeafRay<kMode> leaf_ray(ray, setup.wray, origin_tri);
+  const float slack = kAnyHit ? 0.0f : setup.slack;  // any hit: unused (not set up)
+  LeafRayOf<kAnyHit> leaf_ray(ray, setup, origin_tri);
   const BoxRay box_ray(setup);
   const float* soa = leaves.leaf_soa.data();
   const float* soa_end = soa + leaves.leaf_soa.size();
@@ -65,8 +127,9 @@ Hit TraceLeafBvh(const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
       const LeafBvhNode& node = nodes[child];
       HWY_ALIGN float t_near[kBvhWidth];
       uint32_t mask =
-          lane::RaySlots(DB(), node, box_ray.o, box_ray.inv, box_ray.near_row, box_ray.far_row,
-                         ray.tmin, kAnyHit ? best.t : best.t + slack, t_near);
+          lane::RaySlots<DB, kScaled>(DB(), node, box_ray.o, box_ray.inv, box_ray.near_row,
+                                      box_ray.far_row, ray.tmin,
+                                      kAnyHit ? best.t : best.t + slack, t_near);
       if (mask == 0) goto next;
       const int first = __builtin_ctz(mask);
       mask &= mask - 1;
@@ -94,7 +157,8 @@ Hit TraceLeafBvh(const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
     {
       const float* packet =
           soa + static_cast<size_t>(child & ~LeafBvhNode::kLeafBit) * kPacketFloats;
-      if (leaf_step::TestLeaf<kAnyHit, false, kMode>(leaf_ray, packet, soa_end, &best, nullptr)) {
+      if (leaf_step::TestLeaf<kAnyHit, false, kMode>(leaf_ray.Get(), packet, soa_end, &best,
+                                                     nullptr)) {
         return best;
       }
     }
@@ -117,11 +181,13 @@ Hit TraceLeafBvh(const LeafBvh& bvh, const Ray& input, uint32_t origin_tri) {
 }  // namespace
 
 Hit IntersectLeafBvh(const LeafBvh& bvh, const Ray& ray) {
-  return TraceLeafBvh<false>(bvh, ray, kNoHit);
+  if (ray.tmin >= 0.0f) return TraceLeafBvh<false, true>(bvh, ray, kNoHit);
+  return TraceLeafBvh<false, false>(bvh, ray, kNoHit);
 }
 
 bool OccludedLeafBvh(const LeafBvh& bvh, const Ray& ray, uint32_t origin_tri) {
-  return TraceLeafBvh<true>(bvh, ray, origin_tri).hit();
+  if (ray.tmin >= 0.0f) return TraceLeafBvh<true, true>(bvh, ray, origin_tri).hit();
+  return TraceLeafBvh<true, false>(bvh, ray, origin_tri).hit();
 }
 
 }  // namespace kdtree

@@ -150,6 +150,18 @@ inline bool SetUpRayScalar(const Ray& ray, const AABB& box, RaySetup* s) {
 
 namespace ray_setup {
 
+// The common ray: finite components, every direction component a normal
+// float, tmin <= tmax; SanitizeRay leaves it as it is. o = (ox, oy, oz, 0),
+// d = (dx, dy, dz, 1).
+inline __attribute__((always_inline)) bool IsCommonRay(__m128 o, __m128 d, const Ray& ray) {
+  // x - x is 0 for a finite x, NaN otherwise.
+  const __m128 finite = _mm_cmpord_ps(_mm_sub_ps(o, o), _mm_sub_ps(d, d));
+  const __m128 normal =
+      _mm_cmpge_ps(_mm_and_ps(d, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff))),
+                   _mm_set1_ps(std::numeric_limits<float>::min()));
+  return _mm_movemask_ps(_mm_and_ps(finite, normal)) == 15 && ray.tmin <= ray.tmax;
+}
+
 // SetUpRay's vector path for a ray with every direction component nonzero:
 // o = (ox, oy, oz, 0), d = (dx, dy, dz, 1). Lane k of every vector is axis
 // k; the reach, the three slabs and the root interval are computed in
@@ -260,15 +272,27 @@ inline __attribute__((always_inline)) bool SanitizeAndSetUpRay(Ray* ray, const A
                                                                RaySetup* s) {
   const __m128 d = _mm_setr_ps(ray->dir.x, ray->dir.y, ray->dir.z, 1.0f);
   const __m128 o = _mm_setr_ps(ray->origin.x, ray->origin.y, ray->origin.z, 0.0f);
-  // x - x is 0 for a finite x, NaN otherwise.
-  const __m128 finite = _mm_cmpord_ps(_mm_sub_ps(o, o), _mm_sub_ps(d, d));
-  const __m128 normal =
-      _mm_cmpge_ps(_mm_and_ps(d, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff))),
-                   _mm_set1_ps(std::numeric_limits<float>::min()));
-  if (_mm_movemask_ps(_mm_and_ps(finite, normal)) == 15 && ray->tmin <= ray->tmax) {
-    return ray_setup::SetUpVector(o, d, *ray, box, s);
-  }
+  if (ray_setup::IsCommonRay(o, d, *ray)) return ray_setup::SetUpVector(o, d, *ray, box, s);
   return SanitizeRay(ray) && SetUpRay(*ray, box, s);
+}
+
+// What a box test needs of a common ray (above): s->org, s->inv and
+// s->negative, as SetUpVector writes them (the same vector division); the
+// other fields are left unset. False for any other ray, which then takes
+// SanitizeAndSetUpRay. For a traversal whose boxes hold the scene and that
+// needs the rest only at a leaf (leaf_bvh_traversal.cc's shadow rays): it
+// skips the root box's interval and the watertight frame.
+inline __attribute__((always_inline)) bool SetUpCommonBoxRay(const Ray& ray, RaySetup* s) {
+  const __m128 d = _mm_setr_ps(ray.dir.x, ray.dir.y, ray.dir.z, 1.0f);
+  const __m128 o = _mm_setr_ps(ray.origin.x, ray.origin.y, ray.origin.z, 0.0f);
+  if (!ray_setup::IsCommonRay(o, d, ray)) return false;
+  _mm_store_ps(s->org, o);
+  _mm_store_ps(s->inv, _mm_div_ps(_mm_set1_ps(1.0f), d));
+  const int sign = _mm_movemask_ps(d);
+  s->negative[0] = sign & 1;
+  s->negative[1] = (sign >> 1) & 1;
+  s->negative[2] = (sign >> 2) & 1;
+  return true;
 }
 
 }  // namespace kdtree
