@@ -12,7 +12,9 @@ Embree's dispatch then both choose their AVX2 code:
     bazel --output_base=/tmp/bz_avx2 build -c opt --copt=-O3 \\
         --copt=-march=haswell --copt=-maes //cc/bench:render_bench
     cp -L bazel-bin/cc/bench/render_bench /tmp/rb_avx2
-    bazel build --config=opt //cc/bench:render_bench  # bazel-bin back
+    # bazel-bin and bazel-out back to the timed build, which bench.py and
+    # the runners run from bazel-out/k8-opt/bin:
+    bazel build --config=opt //cc/bench:render_bench
     valgrind --tool=callgrind --callgrind-out-file=/tmp/city2.cg \\
         /tmp/rb_avx2 --scenes city2 --preset sah-packet \\
         --variants kd_bvh,kd_bvh_packet --threads 1 --repeats 1 --warmup 0 \\
@@ -25,7 +27,9 @@ to it and the instructions (callgrind's Ir) they took, inclusive, and their
 ratio. The tracers' calls (KdTreeBvhTracer, EmbreeTracer) are one ray or one
 packet each, so the ratio is instructions per ray or per packet; the
 renderer calls each tracer once per render and ray, so the counts cover
-several renders of the same rays.
+several renders of the same rays. (The README's counts of one traversal
+function, before and after a change, came from a scratch build that held
+both in one binary, with callgrind's --toggle-collect on that function.)
 """
 
 import argparse
@@ -36,12 +40,15 @@ import sys
 
 def calls_per_function(lines):
     """{callee name: (calls, inclusive Ir)} from a callgrind output file's
-    lines (its name compression resolved; Ir is the first event)."""
+    lines (its name compression resolved; the cost lines' position columns
+    from its `positions:` header, Ir's column from `events:`)."""
     names = {}
     calls = collections.Counter()
     cost = collections.Counter()
     callee = None
     pending = None
+    positions = 1  # "line"; "instr line" with --dump-instr=yes
+    ir = 0
 
     def name(text):
         m = re.match(r"\((\d+)\)(?: (.*))?$", text)
@@ -53,8 +60,13 @@ def calls_per_function(lines):
 
     for line in lines:
         line = line.rstrip("\n")
-        if line.startswith("fn="):
+        if line.startswith("positions:"):
+            positions = len(line.split()) - 1
+        elif line.startswith("events:"):
+            ir = line.split()[1:].index("Ir")
+        elif line.startswith("fn="):
             name(line[3:])
+            callee = None
         elif line.startswith("cfn="):
             callee = name(line[4:])
         elif line.startswith("calls="):
@@ -65,7 +77,8 @@ def calls_per_function(lines):
                 pending = None
                 continue
             calls[callee] += pending
-            cost[callee] += int(fields[1]) if len(fields) > 1 else 0
+            column = positions + ir  # a cost line may omit its trailing zeros
+            cost[callee] += int(fields[column]) if len(fields) > column else 0
             pending = None
     return {f: (calls[f], cost[f]) for f in calls}
 

@@ -55,5 +55,15 @@ class CallgrindCallsTest(unittest.TestCase):
             self.assertIn("absent", err.getvalue())
 
 
+    def test_positions_and_event_order(self):
+        # --dump-instr=yes writes "instr line" positions; Ir need not come first.
+        profile = PROFILE.replace("events: Ir Bc", "positions: instr line\nevents: Bc Ir")
+        profile = profile.replace("0 150", "0x10 0 1 150").replace("0 50", "0x20 0 1 50")
+        profile = profile.replace("+1 30", "+4 +1 2 30")
+        table = callgrind_calls.calls_per_function(io.StringIO(profile))
+        self.assertEqual(table["kdtree::Tracer::Occluded(kdtree::Ray const&) const"], (3, 200))
+        self.assertEqual(table["leaf"], (4, 30))
+
+
 if __name__ == "__main__":
     unittest.main()

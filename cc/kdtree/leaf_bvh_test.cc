@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -50,12 +51,14 @@ TEST_P(LeafBvhVsKd, SameAnswers) {
   for (const Ray& r : testing::CameraRays(soup, 120, 120)) rays.push_back(r);
   for (const Ray& r : testing::GridAxisRays(3000, 9)) rays.push_back(r);
   // Rays that start behind their origin (tmin < 0: the box test's widening
-  // in full, slab_slots-inl.h) or ahead of it.
+  // in full, slab_slots-inl.h), ahead of it, or at -0: random ones and
+  // axis-parallel ones (the set-up's path for a zero direction component).
   const float size = Length(soup.Bounds().Extent());
-  for (size_t i = 0; i < 4000; ++i) {
-    Ray r = rays[i];
-    r.tmin = (i % 2 == 0 ? -0.5f : 0.1f) * size;
-    rays.push_back(r);
+  std::vector<Ray> moved(rays.begin(), rays.begin() + 4000);
+  for (const Ray& r : testing::GridAxisRays(1500, 13)) moved.push_back(r);
+  for (size_t i = 0; i < moved.size(); ++i) {
+    moved[i].tmin = (i % 3 == 0 ? -0.5f : i % 3 == 1 ? 0.1f : -0.0f) * size;
+    rays.push_back(moved[i]);
   }
   const testing::BvhMismatches m = testing::CompareWithKdTree(soup, *tree, bvh, rays, 16);
   EXPECT_EQ(m.closest, 0);
@@ -217,6 +220,39 @@ TEST(LeafBvh, SlabWideningIsMonotone) {
     }
   }
   EXPECT_EQ(bad, 0);
+}
+
+// The single rays' widening for tmin >= 0 (slab_slots-inl.h RaySlots,
+// kScaled): t * (1 -+ 4 u) is t -+ fl(|t| 4 u) bit for bit wherever |t| 4 u
+// is a normal float (t >= 2^-104), and everywhere t (1 -+ 4 u) correctly
+// rounded; checked on every 13th non-negative float and the edges.
+TEST(LeafBvh, ScaledWideningIsTheSameNumbers) {
+  const volatile float pad = 4.0f * 0x1p-24f;  // not folded
+  const volatile float lo_scale = 1.0f - 4.0f * 0x1p-24f, hi_scale = 1.0f + 4.0f * 0x1p-24f;
+  int64_t bad = 0, same = 0;
+  const auto check = [&](float t) {
+    const float lo = t * lo_scale, hi = t * hi_scale;
+    // The exact products fit a double (24 + 23 bits): one rounding to float.
+    bad += lo != static_cast<float>(static_cast<double>(t) * (1.0 - 0x1p-22));
+    bad += hi != static_cast<float>(static_cast<double>(t) * (1.0 + 0x1p-22));
+    if (t >= 0x1p-104f) {
+      const float old_lo = t - std::fabs(t) * pad, old_hi = t + std::fabs(t) * pad;
+      bad += std::memcmp(&lo, &old_lo, sizeof(lo)) != 0;
+      bad += std::memcmp(&hi, &old_hi, sizeof(hi)) != 0;
+      ++same;
+    }
+  };
+  for (uint32_t bits = 0; bits < 0x7f800000u; bits += 13) {
+    float t;
+    std::memcpy(&t, &bits, sizeof(t));
+    check(t);
+  }
+  for (const float t : {0.0f, 0x1p-149f, 0x1p-126f, 0x1p-104f, std::nextafter(0x1p-104f, 0.0f),
+                        1.0f, std::numeric_limits<float>::max()}) {
+    check(t);
+  }
+  EXPECT_EQ(bad, 0);
+  EXPECT_GT(same, 100000000);
 }
 
 // The triangle ids of the packets at `soa`, pads left out.

@@ -67,6 +67,9 @@ class LeafRayOf<true> {
   // `ray`: the sanitised ray, which must outlive this.
   LeafRayOf(const Ray& ray, const RaySetup&, uint32_t origin_tri)
       : ray_(ray), origin_tri_(origin_tri) {}
+  // A copy's LeafRay would refer to this one's frame.
+  LeafRayOf(const LeafRayOf&) = delete;
+  LeafRayOf& operator=(const LeafRayOf&) = delete;
   const leaf_step::LeafRay<kMode>& Get() {
     if (!leaf_ray_) {
       wray_ = MakeWatertightRay(ray_);  // SetUpVector's frame, bit for bit (ray_setup_test)
@@ -90,8 +93,10 @@ class LeafRayOf<true> {
 // Any hit (shadow rays) sets up only what the box test needs
 // (SetUpCommonBoxRay) and the leaf step's ray at its first leaf
 // (LeafRayOf<true>); the answers are the same, as the root box's interval
-// only ever ended a ray that the BVH's boxes, which hold the scene's
-// triangles, also end. Against the set-up in full (in-process A/B, the two
+// only ever ended a ray that the BVH's boxes also end: they lie in the
+// scene's box, and the root test widens each slab more (kPad and the
+// kd-tree's spatial tolerance) than a node's test (4 u). Against the set-up
+// in full (in-process A/B, the two
 // in one render_bench process, 21 paired rounds, kd_bvh; 2026-12-08): the
 // shadow pass, its tracing alone, took 0.880 of the time on stk-candela-
 // city, 0.911 on courtyard-1m and lost-empire, 0.923 on morse-kitchen,

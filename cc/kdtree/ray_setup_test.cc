@@ -164,6 +164,41 @@ TEST(RaySetup, SanitizeAndSetUpEqualsScalarBitForBit) {
   EXPECT_GT(rejected, 20000);
 }
 
+// SetUpCommonBoxRay (the BVH's shadow rays) on rays as given: true exactly
+// for the rays SanitizeRay leaves as they are with no direction component
+// zero, and then org, inv and negative bit for bit SetUpRayScalar's.
+TEST(RaySetup, CommonBoxRayEqualsFullSetUpBitForBit) {
+  std::mt19937 rng(20261208);
+  int common = 0, other = 0;
+  for (int i = 0; i < 400000; ++i) {
+    Ray ray;
+    ray.origin = Vec3(Raw(rng), Raw(rng), Raw(rng));
+    ray.dir = Vec3(Raw(rng), Raw(rng), Raw(rng));
+    ray.tmin = i % 4 == 0 ? -1.0f : i % 97 == 0 ? NAN : 0.0f;
+    ray.tmax = i % 6 == 0 ? 3.0f : i % 89 == 0 ? -2.0f : INFINITY;
+    RaySetup lean;
+    const bool is_common = SetUpCommonBoxRay(ray, &lean);
+    Ray sanitized = ray;
+    const bool unchanged = SanitizeRay(&sanitized) && sanitized.dir.x != 0 &&
+                           sanitized.dir.y != 0 && sanitized.dir.z != 0 &&
+                           std::memcmp(&sanitized, &ray, sizeof(Ray)) == 0;
+    ASSERT_EQ(is_common, unchanged) << i;
+    if (!is_common) {
+      ++other;
+      continue;
+    }
+    ++common;
+    // SetUpRayScalar's fields, which SetUpVector's equal (above).
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(Bits(lean.org[k]), Bits(ray.origin[k])) << i;
+      ASSERT_EQ(Bits(lean.inv[k]), Bits(1.0f / ray.dir[k])) << i;
+      ASSERT_EQ(lean.negative[k], std::signbit(ray.dir[k])) << i;
+    }
+  }
+  EXPECT_GT(common, 100000);
+  EXPECT_GT(other, 50000);
+}
+
 // The packet kernel's vector set-up (packet_internal::SetUpLanes, 16 lanes at
 // every kernel width the machine runs) against SetUpRay on each ray: the same
 // answer, and every field bit for bit where the ray reaches the box (the

@@ -54,13 +54,16 @@ static_assert(HWY_ARCH_X86, "the slab test relies on x86's max and min with a Na
 //
 // kScaled, for tmin >= 0 only: the widening as one multiplication a side,
 // tn * (1 - 4 u) and tf * (1 + 4 u), instead of tn - |tn| 4 u and tf + |tf|
-// 4 u. The same numbers: |tn| 4 u is exact (4 u = 2^-22), so both forms
-// round tn (1 -+ 4 u) once, and tn >= tmin >= 0 (a NaN slab distance
-// yields to tmin, above); where tf < 0 the two differ, but both are then
-// below tn's widened value, so the mask is the same. (The one exception:
-// a slab distance of +inf, from a direction component of zero, gives NaN
-// in the other form, a miss, and +inf here, which enters a box only
-// through another +inf: a box more, never one less.) It takes two
+// 4 u (u = 2^-24). The same numbers wherever |t| 4 u is a normal float
+// (|t| >= 2^-104): it is then exact (4 u = 2^-22), so both forms round
+// t (1 -+ 4 u) once; below that they may differ by an ulp, this form being
+// t (1 -+ 4 u) correctly rounded, so the widening by 4 u holds at least as
+// well. tn >= tmin >= 0 (a NaN slab distance yields to the running tn,
+// above); where tf < 0 the two forms differ, but both are then below tn's
+// widened value, so the mask is the same. (The one exception: a slab
+// distance of +inf, from a direction component of zero or an overflow,
+// gives NaN in the other form, a miss, and +inf here, which enters a box
+// only through another +inf: a box more, never one less.) It takes two
 // operations off each node's dependent chain: single rays (kd_bvh,
 // in-process A/B, 21 paired rounds; city2, lost-empire, courtyard-1m,
 // bunny, teapots, hairball-1m, rungholt-1m, fforest; 2026-12-08): T_R
