@@ -96,9 +96,8 @@ class LeafRayOf<true> {
 // only ever ended a ray that the BVH's boxes also end: they lie in the
 // scene's box, and the root test widens each slab more (kPad and the
 // kd-tree's spatial tolerance) than a node's test (4 u). Against the set-up
-// in full (in-process A/B, the two
-// in one render_bench process, 21 paired rounds, kd_bvh; 2026-12-08): the
-// shadow pass, its tracing alone, took 0.880 of the time on stk-candela-
+// in full (in-process A/B, the two in one render_bench process, 21 paired
+// rounds, kd_bvh; 2026-12-08): the shadow pass, its tracing alone, took 0.880 of the time on stk-candela-
 // city, 0.911 on courtyard-1m and lost-empire, 0.923 on morse-kitchen,
 // 0.935 on city2, 0.947 on rungholt-1m, 0.96-0.98 on bunny, teapots and
 // fforest and 0.992 on hairball-1m, where the camera pass, the same code on
