@@ -162,6 +162,19 @@ inline __attribute__((always_inline)) bool IsCommonRay(__m128 o, __m128 d, const
   return _mm_movemask_ps(_mm_and_ps(finite, normal)) == 15 && ray.tmin <= ray.tmax;
 }
 
+// What a box test reads of the set-up: s->org, s->inv and s->negative from
+// o = (ox, oy, oz, 0), inv = 1 / d and d = (dx, dy, dz, 1) (SetUpVector and
+// SetUpCommonBoxRay).
+inline __attribute__((always_inline)) void StoreBoxRay(__m128 o, __m128 inv, __m128 d,
+                                                       RaySetup* s) {
+  _mm_store_ps(s->org, o);
+  _mm_store_ps(s->inv, inv);
+  const int sign = _mm_movemask_ps(d);
+  s->negative[0] = sign & 1;
+  s->negative[1] = (sign >> 1) & 1;
+  s->negative[2] = (sign >> 2) & 1;
+}
+
 // SetUpRay's vector path for a ray with every direction component nonzero:
 // o = (ox, oy, oz, 0), d = (dx, dy, dz, 1). Lane k of every vector is axis
 // k; the reach, the three slabs and the root interval are computed in
@@ -211,13 +224,8 @@ inline __attribute__((always_inline)) bool SetUpVector(__m128 o, __m128 d, const
   s->t_entry = t_entry;
   s->t_exit = t_exit;
   s->delta = _mm_cvtss_f32(delta);
-  _mm_store_ps(s->org, o);
-  _mm_store_ps(s->inv, inv);
+  StoreBoxRay(o, inv, d, s);
   _mm_store_ps(s->tol, tol);
-  const int sign = _mm_movemask_ps(d);
-  s->negative[0] = sign & 1;
-  s->negative[1] = (sign >> 1) & 1;
-  s->negative[2] = (sign >> 2) & 1;
   // MakeWatertightRay's three divisions and the slack's one, in one. Its
   // axes come from WatertightAxes' branches, which the camera's and a
   // light's rays predict: a branch-free choice of the axes and lanes
@@ -286,12 +294,7 @@ inline __attribute__((always_inline)) bool SetUpCommonBoxRay(const Ray& ray, Ray
   const __m128 d = _mm_setr_ps(ray.dir.x, ray.dir.y, ray.dir.z, 1.0f);
   const __m128 o = _mm_setr_ps(ray.origin.x, ray.origin.y, ray.origin.z, 0.0f);
   if (!ray_setup::IsCommonRay(o, d, ray)) return false;
-  _mm_store_ps(s->org, o);
-  _mm_store_ps(s->inv, _mm_div_ps(_mm_set1_ps(1.0f), d));
-  const int sign = _mm_movemask_ps(d);
-  s->negative[0] = sign & 1;
-  s->negative[1] = (sign >> 1) & 1;
-  s->negative[2] = (sign >> 2) & 1;
+  ray_setup::StoreBoxRay(o, _mm_div_ps(_mm_set1_ps(1.0f), d), d, s);
   return true;
 }
 
